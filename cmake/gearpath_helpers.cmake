@@ -1,25 +1,42 @@
-# gearpath_add_library(NAME SOURCES ... DEPS ...)
-#   A static library of project code: project-root include path, warnings, C++20.
-function(gearpath_add_library name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
-  add_library(${name} STATIC ${ARG_SOURCES})
-  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
-  target_link_libraries(${name} PUBLIC ${ARG_DEPS} PRIVATE gearpath_warnings)
-  set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+# Build helpers. Each core module is one static library made of every .cc in its folder, and
+# its tests are one GoogleTest executable made of every *_test.cc in the mirrored tests folder,
+# so adding a file never needs a CMake edit.
+
+# gearpath_module(NAME DEPS ...): library `gearpath_<NAME>` from the *.cc in this folder.
+function(gearpath_module name)
+  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
+  if(sources)
+    add_library(gearpath_${name} STATIC ${sources})
+    target_include_directories(gearpath_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+    target_link_libraries(gearpath_${name} PUBLIC ${ARG_DEPS} PRIVATE gearpath_warnings)
+    set_target_properties(gearpath_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  else()
+    add_library(gearpath_${name} INTERFACE)
+    target_include_directories(gearpath_${name} INTERFACE ${PROJECT_SOURCE_DIR})
+    target_link_libraries(gearpath_${name} INTERFACE ${ARG_DEPS})
+  endif()
 endfunction()
 
-# gearpath_add_test(NAME SOURCES ... DEPS ... [TIMEOUT seconds])
-#   One GoogleTest executable registered with ctest, test by test. TIMEOUT is the per-test
-#   watchdog: a hang fails fast instead of stalling CI.
-function(gearpath_add_test name)
-  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS" ${ARGN})
+# gearpath_module_tests(NAME DEPS ... [TIMEOUT s]): executable `test_<NAME>` from the *_test.cc
+# in this folder, registered with ctest test by test. TIMEOUT is the per-test watchdog, so a
+# hang fails fast instead of stalling CI.
+function(gearpath_module_tests name)
+  cmake_parse_arguments(ARG "" "TIMEOUT" "DEPS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc)
+  if(NOT sources)
+    return()
+  endif()
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 120)
   endif()
-  add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main
-                                        gearpath_warnings)
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
+  add_executable(test_${name} ${sources})
+  target_include_directories(test_${name} PRIVATE ${PROJECT_SOURCE_DIR})
+  target_link_libraries(test_${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main
+                                             gearpath_warnings)
+  target_compile_definitions(test_${name} PRIVATE
+    GEARPATH_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")
+  gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60
                        PROPERTIES TIMEOUT ${ARG_TIMEOUT}
                        WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 endfunction()

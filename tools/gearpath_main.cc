@@ -1,0 +1,13 @@
+// gearpath: command-line tools around the gearpath daemon (thin fronts over core/ and idl/).
+#include <CLI/CLI.hpp>
+
+#include "tools/commands/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"gearpath: gearbox fault tracing by transfer path analysis - tools"};
+  app.require_subcommand(1);
+  int exit_code = gearpath::tools::kExitOk;
+  gearpath::tools::AddValidateCommand(app, exit_code);
+  CLI11_PARSE(app, argc, argv);
+  return exit_code;
+}
