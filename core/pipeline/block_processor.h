@@ -1,0 +1,249 @@
+// BlockProcessor: one machine's per-block diagnosis engine (the whole data flow of DESIGN.md).
+//
+// For every block: validate -> spectra (FFTW, real-to-complex, one plan per block shape) ->
+// bearing forces per bin (seed Eqs. 40-43 MWI; Tikhonov or least squares selectable) ->
+// path contributions C_ij(f) = H_d,ij(f) F_j(f) at every channel (seed Eq. 45) -> per-path
+// energy shares -> dominant path -> its contribution back to time -> fast kurtogram band ->
+// band-pass, Hilbert, normalised squared envelope spectrum (SES) -> per-shaft indicators
+// (sum of SES amplitudes at the first five harmonics of the shaft rate; seed Sec. 4.3,
+// Table 5), raw vs reconstructed, enhancement = reconstructed / raw in percent -> suspected
+// gear (docs/diagnosis.md explains the verdict logic and the physics behind it).
+//
+// Configure once, process per block:
+//  - Create() validates the setup and builds everything that depends only on the FRFs and the
+//    gear train. It throws nothing; errors name the offending field.
+//  - The first block of a new shape (samples_per_channel; the sample rate is fixed per machine)
+//    configures: FFT plans, the FRF set brought onto the block's bin grid ONCE (linear
+//    interpolation in real and imaginary parts; bins outside the FRF's frequency range get
+//    zero force and are excluded from contributions and shares, and are counted in the
+//    result), the per-bin identification operators, kurtogram plans, buffers. That block
+//    allocates; Prepare(n) does it ahead of time. Later blocks of a configured shape allocate
+//    nothing. Up to kMaxShapes shapes are kept; a further new shape replaces the oldest.
+//  - Process() is noexcept. It never throws on data: a bad block comes back as a typed
+//    RejectReason with a one-line message.
+//
+// Thread-safety: one BlockProcessor per machine worker; Process() mutates internal buffers
+// and must not be called concurrently on the same instance. Different instances share
+// nothing. (FFTW planning is not thread-safe; BlockProcessor serialises its own planner calls
+// through core/dsp's plan cache.)
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/common/accel_block.h"
+#include "core/common/result.h"
+#include "core/diagnosis/fixed_text.h"
+#include "core/diagnosis/train_layout.h"
+#include "core/frf/frf_set.h"
+#include "core/pipeline/block_validation.h"
+
+namespace gearpath {
+
+inline constexpr std::size_t kIndicatorHarmonics = 5;  // seed Sec. 4.3: first five harmonics
+inline constexpr std::size_t kMaxShapes = 4;
+
+struct AnalysisOptions {
+  // --- Bearing-force identification (core/inverse) ---
+  enum class Inverse : std::uint8_t { kMwi, kTikhonov, kLeastSquares };
+  Inverse inverse = Inverse::kMwi;
+  // Regularisation: alpha (MWI) / lambda (Tikhonov) per bin, given as a relative cutoff
+  // c: the parameter whose filter factor is 1/2 at sigma = c * sigma_max(bin). Fixed per FRF
+  // set, so the per-bin operator is built once. 0 = core/inverse's default rule.
+  double relative_cutoff = 1e-3;
+  int mwi_iterations = 10;  // K (seed Algorithm 1)
+
+  // --- Block expectations ---
+  double sample_rate_hz = 0.0;                 // required (> 0)
+  double sample_rate_tolerance = 1e-4;         // relative
+  std::uint32_t min_samples_per_channel = 1024;
+  std::uint32_t max_samples_per_channel = 1u << 18;
+
+  // --- Speed ---
+  double nominal_speed_hz = 0.0;  // input-shaft speed from configuration; 0 = none
+  // Mesh-frequency tracking searches input speeds in [lo, hi]; 0 = +/-20 % around nominal
+  // (or 1..100 Hz when there is no nominal).
+  double speed_search_lo_hz = 0.0;
+  double speed_search_hi_hz = 0.0;
+
+  // --- Dominant path ---
+  enum class DominantCriterion : std::uint8_t {
+    kSidebandEnergy,  // default: energy at mesh-harmonic sidebands h*fm +/- k*fs (docs)
+    kBandEnergy,      // energy in the analysis band
+    kIndicator,       // max over shafts of the fault indicator of each path's contribution
+  };
+  DominantCriterion criterion = DominantCriterion::kSidebandEnergy;
+  double analysis_band_lo_hz = 0.0;  // 0 / 0 = the FRF set's frequency range
+  double analysis_band_hi_hz = 0.0;
+  int sideband_orders = 6;           // k = 1..sideband_orders around each mesh harmonic
+
+  // Indicator channel (row of the FRF set) used for the raw and the reconstructed signal;
+  // -1 = the channel where the dominant path's contribution is largest.
+  int indicator_channel = -1;
+
+  // --- Envelope analysis (core/dsp) ---
+  int kurtogram_max_level = 6;
+  // Minimum envelope band width; 0 = automatic: 2 * kIndicatorHarmonics * highest shaft rate
+  // (the band must hold the modulation it is meant to show, DESIGN.md).
+  double min_band_width_hz = 0.0;
+  bool remove_mesh_tones = true;        // comb-remove mesh harmonics before the kurtogram
+  double harmonic_tolerance = 0.02;     // relative tolerance on harmonic positions (speed drift)
+
+  // --- Verdict ---
+  // Per-shaft indicator thresholds (same order as TrainLayout::shafts); empty = learn them.
+  std::vector<double> indicator_thresholds;
+  int baseline_blocks = 20;       // healthy blocks to learn from (when thresholds are empty)
+  double baseline_k_sigma = 4.0;  // threshold = mean + k * sigma over the baseline blocks
+  double alarm_factor = 2.0;      // Alarm when indicator > alarm_factor * threshold
+};
+
+struct MachineSetup {
+  std::string machine_id;
+  FrfSet frf_set;       // must carry `decoupled` (channels x paths)
+  TrainLayout train;    // gear names must match the names in frf_set.paths[i].gears
+  // Block channel c is accelerometer block_channels[c]; it is matched to the FRF row with the
+  // same sensor id and axis. Empty = the FRF set's channels, in their order. Every FRF row
+  // must be present; block channels without an FRF row are rejected at Create().
+  std::vector<ExpectedChannel> block_channels;
+  AnalysisOptions options;
+};
+
+enum class FaultState : std::uint8_t {
+  kLearning,   // baseline still being learned; indicators published, no verdict yet
+  kNoFault,    // every shaft's indicator under its threshold
+  kSuspected,  // a shaft's indicator over its threshold
+  kAlarm,      // over alarm_factor * threshold
+};
+std::string_view ToString(FaultState state) noexcept;
+
+struct PathShare {
+  std::string_view name;     // FrfSet path name, e.g. "B5x"
+  std::string_view bearing;  // FrfSet bearing description
+  double energy = 0.0;       // sum over channels and analysis-band bins of |C_ij|^2
+  double share = 0.0;        // energy / sum of energies, in [0, 1]
+  double criterion = 0.0;    // value of the dominant-path criterion for this path
+};
+
+struct KurtogramBand {
+  double centre_hz = 0.0;
+  double width_hz = 0.0;
+  int level = 0;              // kurtogram level (may be fractional-tree level / 1-3 split)
+  double kurtosis = 0.0;      // spectral kurtosis of the selected band
+  bool significant = false;   // false: no band stood out; the default band was used
+};
+
+struct ShaftIndicator {
+  std::string_view shaft;           // TrainLayout shaft name
+  double characteristic_hz = 0.0;   // shaft rate at this block's speed
+  double raw = 0.0;                 // sum of the five SES harmonic amplitudes, raw signal
+  double reconstructed = 0.0;       // same, dominant-path contribution
+  double enhancement_percent = 0.0; // 100 * reconstructed / raw (0 when raw == 0)
+  double threshold = 0.0;           // threshold the reconstructed indicator is judged against
+  std::array<double, kIndicatorHarmonics> raw_harmonics{};
+  std::array<double, kIndicatorHarmonics> reconstructed_harmonics{};
+};
+
+struct GearVerdict {
+  FaultState state = FaultState::kLearning;
+  int gear = -1;                  // TrainLayout gear index of the best candidate; -1 = none
+  std::string_view gear_name;
+  int shaft = -1;                 // shaft whose harmonics stand out; -1 = none
+  std::string_view shaft_name;
+  double characteristic_hz = 0.0; // that shaft's rate
+  double confidence = 0.0;        // in [0, 1]
+  std::vector<int> candidates;    // every gear the evidence cannot exclude (indices)
+  std::vector<std::string_view> candidate_names;
+  MessageText reason;             // why, in one line (names the ambiguity when there is one)
+};
+
+struct RegularisationFigures {
+  double alpha_median = 0.0;       // regularisation parameter over in-range bins
+  double condition_median = 0.0;   // condition number of the inverted operator per bin
+  double condition_max = 0.0;
+  double relative_residual = 0.0;  // ||x - H F|| / ||x|| over the analysis band, all channels
+  std::uint32_t bins_used = 0;     // bins inside the FRF range
+  std::uint32_t bins_outside_frf = 0;  // bins with forces set to zero (outside FRF range)
+};
+
+struct BlockResult {
+  std::uint64_t sequence = 0;
+  std::int64_t t0_ns = 0;
+  std::uint64_t sequence_gap = 0;  // blocks missing just before this one (0 = none)
+  bool sequence_restarted = false;
+
+  double speed_hz = 0.0;           // input-shaft speed used
+  SpeedSource speed_source = SpeedSource::kUnknown;
+
+  int dominant_path = -1;
+  std::string_view dominant_path_name;
+  AnalysisOptions::DominantCriterion criterion = AnalysisOptions::DominantCriterion::kSidebandEnergy;
+  double analysis_band_lo_hz = 0.0;
+  double analysis_band_hi_hz = 0.0;
+  std::vector<PathShare> paths;    // every path, FrfSet order
+  int indicator_channel = -1;      // FRF row used for raw / reconstructed indicators
+
+  KurtogramBand raw_band;          // kurtogram band of the raw signal
+  KurtogramBand reconstructed_band;  // kurtogram band of the dominant-path signal
+  std::vector<ShaftIndicator> shafts;  // TrainLayout order
+
+  GearVerdict verdict;
+  RegularisationFigures regularisation;
+};
+
+struct ProcessOutcome {
+  RejectReason reason = RejectReason::kNone;
+  MessageText message;  // empty when accepted
+  bool accepted() const noexcept { return reason == RejectReason::kNone; }
+};
+
+class BlockProcessor {
+ public:
+  // Validates `setup` (FRF set, channel mapping, train layout vs path gears, options) and
+  // builds the shape-independent parts. Errors name the offending field.
+  static Result<BlockProcessor> Create(MachineSetup setup);
+
+  BlockProcessor(BlockProcessor&&) noexcept;
+  BlockProcessor& operator=(BlockProcessor&&) noexcept;
+  ~BlockProcessor();
+
+  // Configures for blocks of `samples_per_channel` samples ahead of the first such block.
+  Status Prepare(std::uint32_t samples_per_channel);
+
+  // Validates and analyses one block. On acceptance `out` is filled; pass the same
+  // BlockResult every time (its vectors are sized once and reused, so nothing is allocated
+  // once the shape is configured). On rejection `out` is left untouched; the
+  // outcome carries the reason and message. The block must stay alive only during the call.
+  ProcessOutcome Process(const AccelBlockView& block, BlockResult& out) noexcept;
+
+  // Time signal (length samples_per_channel of the last accepted block) of the dominant
+  // path's contribution at FRF row `channel`, from the last accepted block. Empty before the
+  // first accepted block or for an invalid channel. Valid until the next Process().
+  std::span<const double> DominantPathSignal(std::size_t channel) const noexcept;
+
+  // Time signal of any path's contribution at FRF row `channel` for the last accepted block,
+  // written into `out` (size samples_per_channel). Allocation-free; false on bad indices or
+  // size.
+  bool PathSignal(std::size_t path, std::size_t channel, std::span<double> out) noexcept;
+
+  // Healthy baseline: number of blocks learned so far / needed (0 needed when configured).
+  int baseline_blocks_learned() const noexcept;
+  int baseline_blocks_needed() const noexcept;
+  // Forget the learned baseline (e.g. after maintenance) and learn again.
+  void ResetBaseline() noexcept;
+
+  const MachineSetup& setup() const noexcept;
+  const BlockExpectations& expectations() const noexcept;
+
+ private:
+  struct Impl;
+  explicit BlockProcessor(std::unique_ptr<Impl> impl) noexcept;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gearpath
