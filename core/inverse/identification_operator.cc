@@ -1,0 +1,262 @@
+#include "core/inverse/identification_operator.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "core/inverse/least_squares.h"
+#include "core/inverse/validation.h"
+
+namespace gearpath {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+double ConditionNumber(const Eigen::VectorXd& sigma) {
+  if (sigma.size() == 0 || !(sigma(0) > 0.0)) return kInfinity;
+  const double smallest = sigma(sigma.size() - 1);
+  return smallest > 0.0 ? sigma(0) / smallest : kInfinity;
+}
+
+// Eq. 40 with the zero-column convention of the header (weight 0: force unobservable).
+Eigen::VectorXd WeightsOrZero(const Eigen::MatrixXcd& h) {
+  const Eigen::MatrixXcd a = h.adjoint() * h;
+  Eigen::VectorXd w(a.rows());
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    const double norm = a.row(i).norm();
+    w(i) = norm > 0.0 ? 1.0 / norm : 0.0;
+  }
+  return w;
+}
+
+std::string BinName(const FrfMatrix& frf, Eigen::Index k) {
+  return "frf.at[" + std::to_string(k) + "] (" + FormatNumber(frf.frequency_hz(k)) + " Hz)";
+}
+
+}  // namespace
+
+std::string_view ToString(IdentifyStatus status) noexcept {
+  switch (status) {
+    case IdentifyStatus::kOk:
+      return "ok";
+    case IdentifyStatus::kBinOutOfRange:
+      return "bin index out of range";
+    case IdentifyStatus::kShapeMismatch:
+      return "response or force length does not match the FRF matrix";
+    case IdentifyStatus::kNonFiniteResponse:
+      return "response contains a non-finite value";
+  }
+  return "unknown";
+}
+
+Status ValidateIdentificationOptions(const IdentificationOptions& options) {
+  if (options.method == InverseMethod::kLeastSquares) {
+    if (!std::isfinite(options.rank_tolerance) || options.rank_tolerance >= 1.0) {
+      return Error{"rank_tolerance: must be finite and < 1 (<= 0 selects max(m, n) * eps), got " +
+                   FormatNumber(options.rank_tolerance)};
+    }
+    return Status::Ok();
+  }
+  if (options.method == InverseMethod::kMwi && options.iterations < 1) {
+    return Error{"iterations: MWI needs K >= 1 iterations, got " +
+                 std::to_string(options.iterations)};
+  }
+  const RegularisationSettings& r = options.regularisation;
+  const std::string parameter_name = options.method == InverseMethod::kMwi ? "alpha" : "lambda";
+  switch (r.rule) {
+    case RegularisationRule::kFixed:
+      if (!std::isfinite(r.parameter) || !(r.parameter > 0.0)) {
+        return Error{parameter_name + ": the fixed regularisation parameter must be finite and "
+                     "> 0, got " + FormatNumber(r.parameter)};
+      }
+      break;
+    case RegularisationRule::kNoiseFloor:
+    case RegularisationRule::kGcv:
+      if (!std::isfinite(r.relative_noise) || !(r.relative_noise > 0.0) ||
+          !(r.relative_noise < 1.0)) {
+        return Error{"relative_noise: eta must lie in (0, 1), got " +
+                     FormatNumber(r.relative_noise)};
+      }
+      break;
+    case RegularisationRule::kDiscrepancy:
+      if (!std::isfinite(r.noise_rms) || !(r.noise_rms > 0.0)) {
+        return Error{"noise_rms: the discrepancy principle needs the noise RMS, finite and > 0, "
+                     "got " + FormatNumber(r.noise_rms)};
+      }
+      if (!std::isfinite(r.discrepancy_factor) || !(r.discrepancy_factor >= 1.0)) {
+        return Error{"discrepancy_factor: tau must be finite and >= 1, got " +
+                     FormatNumber(r.discrepancy_factor)};
+      }
+      break;
+  }
+  return Status::Ok();
+}
+
+Result<IdentificationOperator> IdentificationOperator::Create(
+    const FrfMatrix& frf, const IdentificationOptions& options) {
+  if (Status s = ValidateIdentificationOptions(options); !s) return Error{s.error()};
+  if (frf.at.empty()) return Error{"frf: FRF matrix has no frequency bins"};
+  if (frf.frequency_hz.size() != static_cast<Eigen::Index>(frf.at.size())) {
+    return Error{"frf: " + std::to_string(frf.frequency_hz.size()) + " frequencies but " +
+                 std::to_string(frf.at.size()) + " matrices"};
+  }
+  const Eigen::Index m = frf.at.front().rows();
+  const Eigen::Index n = frf.at.front().cols();
+  IdentificationOperator op;
+  op.options_ = options;
+  op.channels_ = m;
+  op.paths_ = n;
+  const RegularisationRule rule = options.regularisation.rule;
+  op.precomputed_ = options.method == InverseMethod::kLeastSquares ||
+                    rule == RegularisationRule::kFixed || rule == RegularisationRule::kNoiseFloor;
+  op.bins_.reserve(frf.at.size());
+  for (Eigen::Index k = 0; k < frf.bins(); ++k) {
+    const Eigen::MatrixXcd& h = frf.at[k];
+    if (Status s = ValidateOperator(h, BinName(frf, k)); !s) return Error{s.error()};
+    if (h.rows() != m || h.cols() != n) {
+      return Error{BinName(frf, k) + ": shape " + std::to_string(h.rows()) + " x " +
+                   std::to_string(h.cols()) + " differs from the first bin's " +
+                   std::to_string(m) + " x " + std::to_string(n)};
+    }
+    Bin bin;
+    bin.h = h;
+    const Eigen::VectorXd sigma_h = Eigen::JacobiSVD<Eigen::MatrixXcd>(h).singularValues();
+    bin.condition_h = ConditionNumber(sigma_h);
+    const Eigen::VectorXd scale = options.method == InverseMethod::kMwi
+                                      ? Eigen::VectorXd(WeightsOrZero(h).cwiseSqrt())
+                                      : Eigen::VectorXd::Ones(n);
+    bin.svd = DecomposeScaled(h, scale);
+    bin.condition_weighted = options.method == InverseMethod::kMwi
+                                 ? ConditionNumber(bin.svd.sigma)
+                                 : bin.condition_h;
+    const double sigma_max = bin.svd.sigma.size() > 0 ? bin.svd.sigma(0) : 0.0;
+    const double cutoff = options.method == InverseMethod::kLeastSquares
+                              ? LeastSquaresCutoff(sigma_max, m, n, options.rank_tolerance)
+                              : DefaultRankCutoff(sigma_max, m, n);
+    bin.rank = (bin.svd.sigma.array() > cutoff).count();
+    if (!(sigma_max > 0.0)) {
+      bin.outcome = RuleOutcome::kZeroOperator;
+      bin.parameter = options.method == InverseMethod::kLeastSquares ? 0.0 : kInfinity;
+    } else if (options.method == InverseMethod::kLeastSquares) {
+      bin.outcome = RuleOutcome::kNoParameter;
+    } else if (rule == RegularisationRule::kFixed) {
+      bin.parameter = options.regularisation.parameter;
+    } else if (rule == RegularisationRule::kNoiseFloor ||
+               (rule == RegularisationRule::kGcv && m <= bin.rank)) {
+      bin.parameter = NoiseFloorParameter(options.method, sigma_max,
+                                          options.regularisation.relative_noise,
+                                          options.iterations);
+      if (rule == RegularisationRule::kGcv) bin.outcome = RuleOutcome::kGcvFellBackToNoiseFloor;
+    }
+    if (op.precomputed_ || bin.outcome == RuleOutcome::kGcvFellBackToNoiseFloor) {
+      // G = D V diag(phi / sigma) U^H.
+      Eigen::VectorXd gain(bin.svd.sigma.size());
+      for (Eigen::Index i = 0; i < gain.size(); ++i) {
+        const double s = bin.svd.sigma(i);
+        const double phi = FilterFactor(options.method, s, bin.parameter, options.iterations,
+                                        cutoff);
+        gain(i) = phi > 0.0 ? phi / s : 0.0;
+      }
+      bin.g = bin.svd.column_scale.asDiagonal() * bin.svd.v * gain.asDiagonal() *
+              bin.svd.u.adjoint();
+    }
+    op.bins_.push_back(std::move(bin));
+  }
+  const Eigen::Index r = std::min(m, n);
+  op.beta_.resize(r);
+  op.beta2_.resize(r);
+  op.coefficients_.resize(r);
+  op.channel_work_.resize(m);
+  op.path_work_.resize(n);
+  return op;
+}
+
+BinFigures IdentificationOperator::StaticFigures(Eigen::Index bin) const {
+  const Bin& b = bins_.at(static_cast<std::size_t>(bin));
+  BinFigures f;
+  f.parameter = b.parameter;
+  f.condition_h = b.condition_h;
+  f.condition_weighted = b.condition_weighted;
+  f.rank = b.rank;
+  f.outcome = b.outcome;
+  return f;
+}
+
+double IdentificationOperator::ChooseParameter(const Bin& bin, double outside2,
+                                               RuleOutcome* outcome) noexcept {
+  const RegularisationSettings& r = options_.regularisation;
+  if (r.rule == RegularisationRule::kGcv) {
+    *outcome = RuleOutcome::kAsConfigured;
+    return GcvParameter(options_.method, bin.svd.sigma, beta2_, outside2, channels_,
+                        options_.iterations);
+  }
+  const double target = r.discrepancy_factor * r.noise_rms;
+  const ParameterChoice choice =
+      DiscrepancyParameter(options_.method, bin.svd.sigma, beta2_, outside2,
+                           target * target * static_cast<double>(channels_),
+                           options_.iterations);
+  *outcome = choice.outcome;
+  return choice.parameter;
+}
+
+IdentifyStatus IdentificationOperator::Identify(Eigen::Index bin,
+                                                const Eigen::Ref<const Eigen::VectorXcd>& x,
+                                                Eigen::Ref<Eigen::VectorXcd> forces,
+                                                BinFigures* figures) noexcept {
+  if (bin < 0 || bin >= bins()) return IdentifyStatus::kBinOutOfRange;
+  if (x.size() != channels_ || forces.size() != paths_) return IdentifyStatus::kShapeMismatch;
+  if (!x.allFinite()) return IdentifyStatus::kNonFiniteResponse;
+  const Bin& b = bins_[static_cast<std::size_t>(bin)];
+  double parameter = b.parameter;
+  RuleOutcome outcome = b.outcome;
+  if (b.g.size() > 0) {
+    forces.noalias() = b.g * x;
+  } else if (outcome == RuleOutcome::kZeroOperator) {
+    forces.setZero();
+  } else {
+    beta_.noalias() = b.svd.u.adjoint() * x;
+    channel_work_ = x;
+    channel_work_.noalias() -= b.svd.u * beta_;
+    const double outside2 = channel_work_.squaredNorm();
+    beta2_ = beta_.cwiseAbs2();
+    parameter = ChooseParameter(b, outside2, &outcome);
+    for (Eigen::Index i = 0; i < beta_.size(); ++i) {
+      const double s = b.svd.sigma(i);
+      const double phi = FilterFactor(options_.method, s, parameter, options_.iterations, 0.0);
+      coefficients_(i) = phi > 0.0 ? beta_(i) * (phi / s) : Complex(0.0, 0.0);
+    }
+    path_work_.noalias() = b.svd.v * coefficients_;
+    for (Eigen::Index j = 0; j < paths_; ++j) forces(j) = b.svd.column_scale(j) * path_work_(j);
+  }
+  if (figures != nullptr) {
+    figures->parameter = parameter;
+    figures->condition_h = b.condition_h;
+    figures->condition_weighted = b.condition_weighted;
+    figures->rank = b.rank;
+    figures->outcome = outcome;
+    channel_work_ = x;
+    channel_work_.noalias() -= b.h * forces;
+    const double x_norm = x.norm();
+    figures->relative_residual = x_norm > 0.0 ? channel_work_.norm() / x_norm : 0.0;
+  }
+  return IdentifyStatus::kOk;
+}
+
+IdentifyStatus IdentificationOperator::IdentifyAll(const Eigen::Ref<const Eigen::MatrixXcd>& x,
+                                                   Eigen::Ref<Eigen::MatrixXcd> forces,
+                                                   std::span<BinFigures> figures) noexcept {
+  if (x.rows() != channels_ || x.cols() != bins() || forces.rows() != paths_ ||
+      forces.cols() != bins() ||
+      (!figures.empty() && static_cast<Eigen::Index>(figures.size()) != bins())) {
+    return IdentifyStatus::kShapeMismatch;
+  }
+  for (Eigen::Index k = 0; k < bins(); ++k) {
+    const IdentifyStatus s = Identify(k, x.col(k), forces.col(k),
+                                      figures.empty() ? nullptr : &figures[static_cast<std::size_t>(k)]);
+    if (s != IdentifyStatus::kOk) return s;
+  }
+  return IdentifyStatus::kOk;
+}
+
+}  // namespace gearpath
