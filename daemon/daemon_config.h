@@ -1,0 +1,60 @@
+// DaemonConfig: gearpathd's validated configuration (one JSON file, docs/configuration.md).
+//
+// Parsing goes JSON text -> schema (config_schema.h: types, ranges, unknown keys, defaults) ->
+// cross-field rules (unique machine ids, unique channel rows, sample limits, gear-train
+// consistency) -> this struct. Every error names its key path, e.g.
+// `machines[0].analysis.inverse.method: expected one of mwi, tikhonov, least_squares, got "mwii"`.
+// What needs files (the FRF sets) is checked when the machines are built (machine_runtime.h),
+// still naming the key. The default configuration is config/gearpathd.json, compiled in.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/common/result.h"
+
+namespace gearpath::daemon {
+
+struct TopicNames {
+  std::string accel_block;
+  std::string dominant_path;
+  std::string suspected_gear;
+  std::string envelope_indicators;
+  std::string status;
+  bool operator==(const TopicNames&) const = default;
+};
+
+struct MachineConfig {
+  std::string key_path;   // "machines[2]", for messages
+  std::string id;
+  std::string frf_set;    // directory, or "builtin:<name>"
+  nlohmann::json settings;  // the machine's object, validated, defaults filled in
+};
+
+struct DaemonConfig {
+  std::string origin;  // file name, or "<embedded default>"
+  std::string daemon_id;
+  std::string log_level;
+  double status_period_s = 1.0;
+  double throughput_log_period_s = 60.0;
+  int domain_id = 0;
+  TopicNames topics;
+  std::vector<MachineConfig> machines;
+  nlohmann::json normalized;  // the whole config with defaults filled in
+};
+
+inline constexpr std::string_view kBuiltinPrefix = "builtin:";
+inline constexpr std::string_view kEmbeddedOrigin = "<embedded default>";
+
+// Parses and validates config text. `origin` prefixes JSON syntax errors.
+Result<DaemonConfig> ParseDaemonConfig(std::string_view text, std::string_view origin);
+
+// Reads and parses a config file (errors name the file).
+Result<DaemonConfig> LoadDaemonConfigFile(const std::string& path);
+
+// The embedded default configuration: config/gearpathd.json, compiled in at build time.
+std::string_view DefaultConfigText();
+
+}  // namespace gearpath::daemon
