@@ -49,6 +49,8 @@ std::string Child(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
 }
 
+std::string RangeText(const ParamSpec& spec);
+
 class Validator {
  public:
   std::vector<std::string> errors;
@@ -102,10 +104,10 @@ class Validator {
 
   void CheckRange(const ParamSpec& spec, double v, const std::string& where) {
     const bool below = spec.min_exclusive ? !(v > spec.min) : !(v >= spec.min);
-    if (below || !(v <= spec.max) || !std::isfinite(v)) {
-      errors.push_back(fmt::format("{}: expected a value in {}{}, {}], got {}", where,
-                                   spec.min_exclusive ? "(" : "[", Number(spec.min),
-                                   Number(spec.max), Number(v)));
+    const bool above = spec.max_exclusive ? !(v < spec.max) : !(v <= spec.max);
+    if (below || above || !std::isfinite(v)) {
+      errors.push_back(fmt::format("{}: expected a value in {}, got {}", where, RangeText(spec),
+                                   Number(v)));
     }
   }
 
@@ -177,8 +179,8 @@ std::string RangeText(const ParamSpec& spec) {
     case ParamKind::kInteger:
     case ParamKind::kNumber:
       if (std::isinf(spec.min) && std::isinf(spec.max)) return "";
-      return fmt::format("{}{}, {}]", spec.min_exclusive ? "(" : "[", Number(spec.min),
-                         Number(spec.max));
+      return fmt::format("{}{}, {}{}", spec.min_exclusive ? "(" : "[", Number(spec.min),
+                         Number(spec.max), spec.max_exclusive ? ")" : "]");
     case ParamKind::kString:
       return spec.min_size > 0 ? fmt::format("non-empty, at most {} chars", spec.max_size) : "";
     case ParamKind::kArray:

@@ -28,6 +28,7 @@ struct ParamSpec {
   double min = -std::numeric_limits<double>::infinity();  // kInteger / kNumber, inclusive
   double max = std::numeric_limits<double>::infinity();
   bool min_exclusive = false;         // kNumber: value must be > min rather than >= min
+  bool max_exclusive = false;         // kNumber: value must be < max rather than <= max
   std::vector<std::string> choices;   // kEnum
   std::size_t min_size = 0;           // kString: minimum length; kArray: minimum items
   std::size_t max_size = std::numeric_limits<std::size_t>::max();

@@ -36,7 +36,9 @@ void CheckMachine(const json& m, const std::string& at, std::vector<std::string>
   const json& channels = m["channels"];
   for (std::size_t i = 0; i < channels.size(); ++i) {
     const long row = channels[i]["frf_row"].get<long>();
-    if (auto [it, fresh] = rows.emplace(row, i); !fresh) {
+    if (row < 0) {
+      // matched by sensor and axis when the machine is built
+    } else if (auto [it, fresh] = rows.emplace(row, i); !fresh) {
       errors.push_back(fmt::format("{}.channels[{}].frf_row: row {} is already mapped by "
                                    "channels[{}]",
                                    at, i, row, it->second));
@@ -74,31 +76,48 @@ void CheckMachine(const json& m, const std::string& at, std::vector<std::string>
     }
   }
   std::set<std::string> shaft_names;
+  std::map<std::string, std::string> shaft_of_gear;
   const json& shafts = m["gear_train"]["shafts"];
   for (std::size_t i = 0; i < shafts.size(); ++i) {
-    shaft_names.insert(shafts[i]["name"].get<std::string>());
+    const auto shaft = shafts[i]["name"].get<std::string>();
+    if (!shaft_names.insert(shaft).second) {
+      errors.push_back(
+          fmt::format("{}.gear_train.shafts[{}].name: duplicate shaft \"{}\"", at, i, shaft));
+    }
     const json& on = shafts[i]["gears"];
     for (std::size_t g = 0; g < on.size(); ++g) {
-      if (!gear_names.contains(on[g].get<std::string>())) {
+      const auto gear = on[g].get<std::string>();
+      if (!gear_names.contains(gear)) {
         errors.push_back(fmt::format("{}.gear_train.shafts[{}].gears[{}]: unknown gear \"{}\"",
-                                     at, i, g, on[g].get<std::string>()));
+                                     at, i, g, gear));
+      } else if (auto [it, fresh] = shaft_of_gear.emplace(gear, shaft); !fresh) {
+        errors.push_back(fmt::format("{}.gear_train.shafts[{}].gears[{}]: gear \"{}\" is "
+                                     "already on shaft \"{}\"",
+                                     at, i, g, gear, it->second));
       }
     }
   }
-  std::set<std::string> bearing_names;
-  const json& bearings = m["gear_train"]["bearings"];
-  for (std::size_t i = 0; i < bearings.size(); ++i) {
-    bearing_names.insert(bearings[i]["name"].get<std::string>());
-    if (!shaft_names.contains(bearings[i]["shaft"].get<std::string>())) {
-      errors.push_back(fmt::format("{}.gear_train.bearings[{}].shaft: unknown shaft \"{}\"", at,
-                                   i, bearings[i]["shaft"].get<std::string>()));
+  for (std::size_t i = 0; i < gears.size(); ++i) {
+    const auto gear = gears[i]["name"].get<std::string>();
+    if (!shaft_of_gear.contains(gear)) {
+      errors.push_back(fmt::format("{}.gear_train.gears[{}]: gear \"{}\" is on no shaft (list "
+                                   "it in gear_train.shafts[].gears)",
+                                   at, i, gear));
     }
   }
   const json& paths = m["paths"];
+  std::set<std::string> path_names;
   for (std::size_t i = 0; i < paths.size(); ++i) {
-    if (!bearing_names.contains(paths[i]["bearing"].get<std::string>())) {
-      errors.push_back(fmt::format("{}.paths[{}].bearing: unknown bearing \"{}\"", at, i,
-                                   paths[i]["bearing"].get<std::string>()));
+    if (!path_names.insert(paths[i]["name"].get<std::string>()).second) {
+      errors.push_back(fmt::format("{}.paths[{}].name: duplicate path \"{}\"", at, i,
+                                   paths[i]["name"].get<std::string>()));
+    }
+    const json& near = paths[i]["gears"];
+    for (std::size_t g = 0; g < near.size(); ++g) {
+      if (!gear_names.contains(near[g].get<std::string>())) {
+        errors.push_back(fmt::format("{}.paths[{}].gears[{}]: unknown gear \"{}\"", at, i, g,
+                                     near[g].get<std::string>()));
+      }
     }
   }
 }

@@ -70,7 +70,7 @@ ParamSpec Integer(std::string name, std::string meaning, double min, double max,
 
 // A real number in (min, max] when min_exclusive, else [min, max].
 ParamSpec Number(std::string name, std::string meaning, double min, double max, json fallback,
-                 bool min_exclusive = false) {
+                 bool min_exclusive = false, bool max_exclusive = false) {
   ParamSpec s;
   s.name = std::move(name);
   s.meaning = std::move(meaning);
@@ -78,6 +78,7 @@ ParamSpec Number(std::string name, std::string meaning, double min, double max, 
   s.min = min;
   s.max = max;
   s.min_exclusive = min_exclusive;
+  s.max_exclusive = max_exclusive;
   s.default_value = std::move(fallback);
   s.required = s.default_value.is_null();
   return s;
@@ -114,32 +115,34 @@ ParamSpec DdsSection() {
       {Integer("domain_id", "DDS domain id.", 0, 232, 0),
        Object("topics", "Topic names; every daemon and client on a domain must agree on them.",
               {String("accel_block", "Input: blocks of housing accelerations.",
-                      "gearpath_AccelBlock", 1, 256),
+                      "gearpath/AccelBlock", 1, 256),
                String("dominant_path", "Output: the dominant transfer path per block.",
-                      "gearpath_DominantPath", 1, 256),
+                      "gearpath/DominantPath", 1, 256),
                String("suspected_gear", "Output: the suspected gear per block.",
-                      "gearpath_SuspectedGear", 1, 256),
+                      "gearpath/SuspectedGear", 1, 256),
                String("envelope_indicators", "Output: envelope fault indicators per block.",
-                      "gearpath_EnvelopeIndicators", 1, 256),
-               String("status", "Output: daemon status, periodically.", "gearpath_Status", 1,
+                      "gearpath/EnvelopeIndicators", 1, 256),
+               String("status", "Output: daemon status, periodically.", "gearpath/Status", 1,
                       256)})});
 }
 
 ParamSpec ChannelSpec() {
   return Object(
-      "channel", "One block channel.",
+      "channel", "One block channel, in block order.",
       {String("sensor", "Sensor id as carried by the AccelBlock channel, e.g. `A4`.", nullptr, 1,
               kMaxIdLength),
        Enum("axis", "Sensor axis as carried by the AccelBlock channel.", {"x", "y", "z"},
             nullptr),
-       Integer("frf_row", "Row (response channel) of the decoupled FRF matrix it measures.", 0,
-               1023, nullptr)});
+       Integer("frf_row",
+               "Row (response channel) of the decoupled FRF matrix it measures (-1: the row "
+               "with the same sensor and axis).",
+               -1, 1023, -1)});
 }
 
 ParamSpec GearTrainSection() {
   return Object(
       "gear_train",
-      "Shafts, gears, meshes and bearings of the gearbox (core/model/gear_train.h). Shaft rates "
+      "Shafts, gears and meshes of the gearbox (core/diagnosis/train_layout.h). Shaft rates "
       "follow from the input shaft speed and the tooth counts.",
       {Array("shafts", "Shafts from input to output; the first is the input shaft.",
              Object("shaft", "One shaft.",
@@ -149,36 +152,29 @@ ParamSpec GearTrainSection() {
              1, 16),
        Array("gears", "Gears.",
              Object("gear", "One gear.",
-                    {String("name", "Gear name, e.g. `G1`.", nullptr, 1, kMaxIdLength),
+                    {String("name", "Gear name, e.g. `G1`; FRF set paths name their gears so.",
+                            nullptr, 1, kMaxIdLength),
                      Integer("teeth", "Tooth count.", 3, 1000, nullptr)}),
              2, 64),
        Array("stages", "Gear meshes (stages), input side first.",
              Object("stage", "One mesh; power flows from driver to driven.",
-                    {String("driver", "Driving gear.", nullptr, 1, kMaxIdLength),
+                    {String("driver", "Driving gear (nearer the input).", nullptr, 1,
+                            kMaxIdLength),
                      String("driven", "Driven gear.", nullptr, 1, kMaxIdLength)}),
-             1, 16),
-       Array("bearings", "Bearings (seats); each supports one shaft.",
-             Object("bearing", "One bearing.",
-                    {String("name", "Bearing name, e.g. `B1`.", nullptr, 1, kMaxIdLength),
-                     String("shaft", "Name of the shaft it supports.", nullptr, 1,
-                            kMaxIdLength)}),
-             1, 64),
-       Number("pressure_angle_deg", "Pressure angle of the (standard involute) gears, degrees.",
-              5.0, 45.0, 20.0),
-       Number("addendum_coefficient", "Addendum coefficient of the gears.", 0.5, 2.0, 1.0)});
+             1, 16)});
 }
 
 ParamSpec PathSpec() {
-  return Object("path", "One transfer path.",
-                {String("name", "Path name as in the FRF set, e.g. `F4`.", nullptr, 1,
-                        kMaxIdLength),
-                 String("bearing", "Name of the gear_train bearing whose force it is.", nullptr,
-                        1, kMaxIdLength)});
+  return Object(
+      "path", "One transfer path.",
+      {String("name", "Path name as in the FRF set, e.g. `B2y`.", nullptr, 1, kMaxIdLength),
+       Array("gears", "Gears nearest to the bearing this path's force acts in.",
+             String("gear", "Gear name.", nullptr, 1, kMaxIdLength), 1, 8)});
 }
 
 ParamSpec AnalysisSection() {
   return Object(
-      "analysis", "How each block is analysed.",
+      "analysis", "How each block is analysed (core/pipeline/block_processor.h).",
       {Object("inverse", "Bearing-force identification (seed Eqs. 27-28, 40-43).",
               {Enum("method",
                     "mwi: Maximumly Weighted Iteration; tikhonov: Tikhonov regularisation; "
@@ -187,38 +183,72 @@ ParamSpec AnalysisSection() {
                Enum("alpha_rule",
                     "How the regularisation parameter is chosen per bin "
                     "(core/inverse/regularisation_rule.h): noise_floor (filter singular "
-                    "components below relative_noise * sigma_max), fixed (alpha), discrepancy "
-                    "(Morozov, needs noise_rms), gcv (where well posed, else noise_floor).",
+                    "components below relative_noise * sigma_max; precomputed), fixed (alpha; "
+                    "precomputed), discrepancy (Morozov, from noise_rms; per block), gcv (per "
+                    "block where well posed, else noise_floor).",
                     {"noise_floor", "fixed", "discrepancy", "gcv"}, "noise_floor"),
-               Number("alpha", "Regularisation parameter when alpha_rule is fixed.", 0.0, 1e12,
-                      1e-3, true),
+               Number("alpha", "Regularisation parameter (MWI alpha, Tikhonov lambda) when "
+                      "alpha_rule is fixed.",
+                      0.0, 1e12, 1e-3, true),
                Number("relative_noise",
                       "Relative noise level eta of the FRFs (noise_floor and the gcv fallback).",
-                      0.0, 1.0, 1e-3, true),
+                      0.0, 1.0, 1e-3, true, /*max_exclusive=*/true),
                Number("noise_rms",
                       "Per-channel noise RMS of the responses, m/s^2 (discrepancy rule).", 0.0,
                       1e6, 1e-3, true),
-               Number("discrepancy_factor", "Safety factor tau >= 1 of the discrepancy rule.",
-                      1.0, 100.0, 1.0),
-               Integer("iterations", "MWI iteration count K.", 1, 1000, 10)}),
-       Object("kurtogram", "Band selection by spectral kurtosis (fast kurtogram).",
-              {Integer("max_level", "Deepest kurtogram level (band width fs / 2^(level+1)).", 1,
-                       12, 6),
-               Boolean("prewhiten", "Remove deterministic (mesh) tones before the kurtogram.",
-                       true)}),
-       Object("indicators", "Envelope fault indicators.",
-              {Integer("harmonics", "Harmonics of a shaft rate summed into an indicator.", 1, 20,
-                       5)}),
+               Number("discrepancy_factor", "Safety factor tau of the discrepancy rule.", 1.0,
+                      100.0, 1.0),
+               Integer("iterations", "MWI iteration count K (seed Algorithm 1).", 1, 1000, 10)}),
+       Object("speed", "Input-shaft speed when the block carries none.",
+              {Number("search_lo_hz",
+                      "Lower end of the mesh-frequency speed search, Hz (0: 0.8 x nominal).",
+                      0.0, 10000.0, 0.0),
+               Number("search_hi_hz",
+                      "Upper end of the mesh-frequency speed search, Hz (0: 1.2 x nominal).",
+                      0.0, 10000.0, 0.0)}),
+       Object("dominant_path", "How the dominant transfer path is chosen.",
+              {Enum("criterion",
+                    "sideband_energy: energy at mesh-harmonic sidebands; band_energy: energy in "
+                    "the analysis band; indicator: largest envelope fault indicator.",
+                    {"sideband_energy", "band_energy", "indicator"}, "sideband_energy"),
+               Number("band_lo_hz", "Analysis band lower edge, Hz (0 and 0: the FRF range).",
+                      0.0, 1e6, 0.0),
+               Number("band_hi_hz", "Analysis band upper edge, Hz (0 and 0: the FRF range).",
+                      0.0, 1e6, 0.0),
+               Integer("sideband_orders", "Sidebands k = 1..n around each mesh harmonic.", 1, 50,
+                       6),
+               Integer("indicator_channel",
+                       "FRF row whose raw and reconstructed signals give the indicators (-1: "
+                       "where the dominant path contributes most).",
+                       -1, 1023, -1)}),
+       Object("envelope", "Band selection (fast kurtogram) and envelope analysis.",
+              {Integer("kurtogram_max_level",
+                       "Deepest kurtogram level (band width fs / 2^(level+1)).", 1, 12, 6),
+               Number("min_band_width_hz",
+                      "Narrowest envelope band, Hz (0: 2 x 5 harmonics x highest shaft rate).",
+                      0.0, 1e6, 0.0),
+               Boolean("remove_mesh_tones",
+                       "Remove the mesh harmonics (deterministic tones) before the kurtogram.",
+                       true),
+               Number("harmonic_tolerance",
+                      "Relative tolerance on harmonic positions (speed drift).", 0.0, 0.5, 0.02)}),
        Object("baseline",
-              "Healthy-baseline learning: indicators are judged against the machine's own "
-              "first blocks.",
-              {Integer("learning_blocks",
-                       "Blocks averaged into the healthy baseline before any verdict (0: "
-                       "judge against zero).",
-                       0, 100000, 0),
-               Number("threshold_ratio",
-                      "An indicator above this multiple of its baseline counts as a fault.", 1.0,
-                      1000.0, 2.0, true)})});
+              "Verdict thresholds: learned from the machine's own first (healthy) blocks "
+              "unless given.",
+              {Integer("learning_blocks", "Healthy blocks to learn the thresholds from.", 1,
+                       100000, 20),
+               Number("k_sigma", "Learned threshold = mean + k_sigma x standard deviation.", 0.0,
+                      100.0, 4.0, true),
+               Number("alarm_factor", "Alarm when an indicator exceeds alarm_factor x threshold.",
+                      1.0, 1000.0, 2.0),
+               Array("raw_thresholds",
+                     "Per-shaft thresholds of the raw indicator, shaft order (empty: learn).",
+                     Number("threshold", "Threshold.", 0.0, 1e30, nullptr, true), 0, 16,
+                     json::array()),
+               Array("reconstructed_thresholds",
+                     "Per-shaft thresholds of the reconstructed indicator (empty: learn).",
+                     Number("threshold", "Threshold.", 0.0, 1e30, nullptr, true), 0, 16,
+                     json::array())})});
 }
 
 ParamSpec MachineSpec() {
@@ -244,13 +274,13 @@ ParamSpec MachineSpec() {
                        "Longest accepted block, samples per channel (IDL bound 65536).", 16,
                        65536, 65536)}),
        Array("channels",
-             "Block channel -> FRF row. Empty: match block channels to the FRF set's response "
-             "channels by sensor and axis.",
+             "The block's channels in order, each mapped to an FRF row. Empty: the FRF set's "
+             "response channels, in their order.",
              ChannelSpec(), 0, kMaxChannels, json::array()),
        GearTrainSection(),
        Array("paths",
-             "Transfer path (FRF column) -> bearing. Empty: take the bearing named by the FRF "
-             "set's path entries.",
+             "Transfer path (FRF column) -> nearest gears, overriding the gears the FRF set "
+             "names for that path. Empty: the FRF set's.",
              PathSpec(), 0, 64, json::array()),
        AnalysisSection()});
 }

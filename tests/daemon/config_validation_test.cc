@@ -100,10 +100,10 @@ TEST(DaemonConfig, RejectsAnEmptyMachineList) {
 TEST(DaemonConfig, ReportsEveryErrorNotOnlyTheFirst) {
   json c = DefaultJson();
   c["dds"]["domain_id"] = -1;
-  c["machines"][0]["analysis"]["kurtogram"]["max_level"] = 0;
+  c["machines"][0]["analysis"]["envelope"]["kurtogram_max_level"] = 0;
   const std::string errors = ErrorsOf(c);
   EXPECT_NE(errors.find("dds.domain_id:"), std::string::npos) << errors;
-  EXPECT_NE(errors.find("\nmachines[0].analysis.kurtogram.max_level:"), std::string::npos)
+  EXPECT_NE(errors.find("\nmachines[0].analysis.envelope.kurtogram_max_level:"), std::string::npos)
       << errors;
 }
 
@@ -119,13 +119,16 @@ TEST(DaemonConfig, RejectsAStageThatNamesAnUnknownGear) {
   EXPECT_EQ(ErrorsOf(c), "machines[0].gear_train.stages[1].driven: unknown gear \"G9\"");
 }
 
-TEST(DaemonConfig, RejectsABearingOnAnUnknownShaftAndAPathOnAnUnknownBearing) {
+TEST(DaemonConfig, RejectsAPathNamingAnUnknownGearAndAGearOnNoShaft) {
   json c = DefaultJson();
-  c["machines"][0]["gear_train"]["bearings"][0]["shaft"] = "spindle";
-  c["machines"][0]["paths"] = json::array({{{"name", "F4"}, {"bearing", "B7"}}});
+  c["machines"][0]["paths"] = json::array({{{"name", "B1x"}, {"gears", {"G1", "G7"}}}});
+  c["machines"][0]["gear_train"]["shafts"][2]["gears"] = json::array({"G1"});
   EXPECT_EQ(ErrorsOf(c),
-            "machines[0].gear_train.bearings[0].shaft: unknown shaft \"spindle\"\n"
-            "machines[0].paths[0].bearing: unknown bearing \"B7\"");
+            "machines[0].gear_train.shafts[2].gears[0]: gear \"G1\" is already on shaft "
+            "\"input\"\n"
+            "machines[0].gear_train.gears[3]: gear \"G4\" is on no shaft (list it in "
+            "gear_train.shafts[].gears)\n"
+            "machines[0].paths[0].gears[1]: unknown gear \"G7\"");
 }
 
 TEST(DaemonConfig, RejectsTwoChannelsMappedToOneFrfRow) {
