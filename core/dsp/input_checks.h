@@ -1,0 +1,48 @@
+// Small shared checks for the process steps of core/dsp: finite samples and block lengths.
+// Inline, noexcept on the success path; the error messages name the stage and the problem.
+#pragma once
+
+#include <cmath>
+#include <complex>
+#include <cstddef>
+#include <span>
+#include <string>
+
+#include "core/common/result.h"
+
+namespace gearpath::dsp_detail {
+
+// Index of the first non-finite value, or values.size() when all are finite.
+inline std::size_t FirstNonFinite(std::span<const double> values) noexcept {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) return i;
+  }
+  return values.size();
+}
+
+inline std::size_t FirstNonFinite(std::span<const std::complex<double>> values) noexcept {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i].real()) || !std::isfinite(values[i].imag())) return i;
+  }
+  return values.size();
+}
+
+// Checks that `what` holds `expected` values. Allocates a message only on failure.
+template <typename T>
+Status CheckLength(const char* stage, const char* what, std::span<T> values,
+                   std::size_t expected) noexcept {
+  if (values.size() == expected) return Status::Ok();
+  if (values.empty()) return Error{std::string(stage) + ": " + what + " is empty"};
+  return Error{std::string(stage) + ": " + what + " has " + std::to_string(values.size()) +
+               " values, configured for " + std::to_string(expected)};
+}
+
+template <typename T>
+Status CheckFinite(const char* stage, const char* what, std::span<T> values) noexcept {
+  const std::size_t bad = FirstNonFinite(std::span<const std::remove_const_t<T>>(values));
+  if (bad == values.size()) return Status::Ok();
+  return Error{std::string(stage) + ": " + what + " has a non-finite value at index " +
+               std::to_string(bad)};
+}
+
+}  // namespace gearpath::dsp_detail
