@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include "idl/dds/domain.h"
+#include "tests/idl/loopback_test_domains.h"
 
 namespace gearpath::dds {
 namespace {
@@ -63,6 +65,34 @@ TEST_F(EnvironmentTest, NothingIsAppendedWhenCycloneddsUriIsUnsetOrEmpty) {
   EXPECT_EQ(ComposeDomainConfig("<A/>", EnvironmentConfig::kApply), "<A/>");
   setenv("CYCLONEDDS_URI", "", 1);
   EXPECT_EQ(ComposeDomainConfig("<A/>", EnvironmentConfig::kApply), "<A/>");
+}
+
+// Cyclone itself applies CYCLONEDDS_URI on top of the loopback configuration: the fragment
+// below turns Cyclone's config tracing on, and the trace shows the loopback settings intact
+// and only `lo` selected.
+TEST_F(EnvironmentTest, CycloneAppliesCycloneddsUriOnTopOfTheLoopbackConfig) {
+  const std::string log = ::testing::TempDir() + "gearpath_idl_env_" +
+                          std::to_string(getpid()) + ".log";
+  std::remove(log.c_str());
+  setenv("CYCLONEDDS_URI",
+         ("<CycloneDDS><Domain><Tracing><Verbosity>config</Verbosity><OutputFile>" + log +
+          "</OutputFile></Tracing></Domain></CycloneDDS>")
+             .c_str(),
+         1);
+  {
+    Domain domain(testing::TestDomainBase(), kLoopbackConfigXml, EnvironmentConfig::kApply);
+    Participant participant(domain);
+  }
+  std::ifstream file(log);
+  ASSERT_TRUE(file) << "no Cyclone trace at " << log << ": CYCLONEDDS_URI was not applied";
+  std::ostringstream content;
+  content << file.rdbuf();
+  const std::string trace = content.str();
+  std::remove(log.c_str());
+  EXPECT_NE(trace.find("NetworkInterface[@address]: 127.0.0.1"), std::string::npos);
+  EXPECT_NE(trace.find("AllowMulticast/#text: false"), std::string::npos);
+  EXPECT_NE(trace.find("MaxAutoParticipantIndex/#text: 60"), std::string::npos);
+  EXPECT_NE(trace.find("selected interfaces: lo "), std::string::npos);
 }
 
 }  // namespace
