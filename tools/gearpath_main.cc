@@ -7,7 +7,7 @@ int main(int argc, char** argv) {
   CLI::App app{"gearpath: gearbox fault tracing by transfer path analysis - tools"};
   app.require_subcommand(1);
   int exit_code = gearpath::tools::kExitOk;
-  gearpath::tools::AddValidateCommand(app, exit_code);
+  // Subcommands register here, one line each (validate lands with core/inverse's tables).
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }
