@@ -1,0 +1,169 @@
+#include "daemon/dds_bridge.h"
+
+#include <algorithm>
+
+#include "idl/dds/sequence.h"
+
+namespace gearpath::daemon {
+namespace {
+
+SpeedSource CoreSpeedSource(gearpath_SpeedSource source) {
+  switch (source) {
+    case gearpath_SPEED_ACQUISITION_TACHOMETER:
+    case gearpath_SPEED_OTHER: return SpeedSource::kAcquisition;
+    default: return SpeedSource::kUnknown;
+  }
+}
+
+gearpath_SpeedSource WireSpeedSource(SpeedSource source) {
+  switch (source) {
+    case SpeedSource::kAcquisition: return gearpath_SPEED_ACQUISITION_TACHOMETER;
+    case SpeedSource::kConfiguration:
+    case SpeedSource::kEstimated: return gearpath_SPEED_OTHER;
+    case SpeedSource::kUnknown: break;
+  }
+  return gearpath_SPEED_UNKNOWN;
+}
+
+Axis CoreAxis(gearpath_Axis axis) {
+  switch (axis) {
+    case gearpath_AXIS_Y: return Axis::kY;
+    case gearpath_AXIS_Z: return Axis::kZ;
+    default: return Axis::kX;
+  }
+}
+
+template <typename Seq>
+std::uint32_t ResizeBounded(Seq& seq, std::size_t wanted, std::size_t bound) noexcept {
+  const auto n = static_cast<std::uint32_t>(std::min(wanted, bound));
+  if (!dds::Resize(seq, n)) {
+    seq._length = 0;
+    return 0;
+  }
+  return n;
+}
+
+}  // namespace
+
+AccelBlockView ViewOf(const gearpath_AccelBlock& sample, std::vector<ChannelInfo>& channels) {
+  const auto wire = dds::View(sample.channels);
+  channels.resize(wire.size());
+  for (std::size_t c = 0; c < wire.size(); ++c) {
+    channels[c].sensor.assign(dds::GetString(wire[c].sensor_id));
+    channels[c].axis = CoreAxis(wire[c].axis);
+    channels[c].unit.assign(dds::GetString(wire[c].unit));
+    channels[c].sensitivity = wire[c].sensitivity_mv_per_unit;
+  }
+  AccelBlockView view;
+  view.machine_id = dds::GetString(sample.machine_id);
+  view.sequence = sample.sequence_number;
+  view.t0_ns = sample.t0_ns;
+  view.sample_rate_hz = sample.sample_rate_hz;
+  view.speed_hz = sample.speed_hz;
+  view.speed_source = CoreSpeedSource(sample.speed_source);
+  view.channels = channels;
+  view.samples_per_channel = sample.samples_per_channel;
+  view.samples = dds::View(sample.samples);
+  return view;
+}
+
+void FillDominantPath(std::string_view machine_id, const BlockResult& r,
+                      gearpath_DominantPath& out) noexcept {
+  CopyTruncated(out.machine_id, machine_id);
+  out.block_sequence = r.sequence;
+  out.block_t0_ns = r.t0_ns;
+  out.path_index = r.dominant_path < 0 ? 0u : static_cast<std::uint32_t>(r.dominant_path);
+  CopyTruncated(out.path_name, r.dominant_path_name);
+  const std::uint32_t n = ResizeBounded(out.paths, r.paths.size(), gearpath_MAX_PATHS);
+  auto paths = dds::MutableView(out.paths);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    CopyTruncated(paths[i].name, r.paths[i].name);
+    paths[i].share = r.paths[i].share;
+  }
+  out.band_lo_hz = r.analysis_band_lo_hz;
+  out.band_hi_hz = r.analysis_band_hi_hz;
+  out.criterion = r.criterion == AnalysisOptions::DominantCriterion::kBandEnergy
+                      ? gearpath_CRITERION_BAND_ENERGY
+                      : gearpath_CRITERION_OTHER;
+}
+
+void FillSuspectedGear(std::string_view machine_id, const BlockResult& r,
+                       gearpath_SuspectedGear& out) noexcept {
+  const GearVerdict& v = r.verdict;
+  CopyTruncated(out.machine_id, machine_id);
+  out.block_sequence = r.sequence;
+  out.block_t0_ns = r.t0_ns;
+  switch (v.state) {
+    case FaultState::kSuspected: out.state = gearpath_SUSPECTED; break;
+    case FaultState::kAlarm: out.state = gearpath_ALARM; break;
+    default: out.state = gearpath_NO_FAULT; break;
+  }
+  const bool named = out.state != gearpath_NO_FAULT;
+  CopyTruncated(out.gear_name, named ? v.gear_name : std::string_view());
+  CopyTruncated(out.shaft_name, named ? v.shaft_name : std::string_view());
+  out.characteristic_frequency_hz = named ? v.characteristic_hz : 0.0;
+  out.confidence = v.confidence;
+  const std::size_t candidates = named && v.candidate_names.size() > 1 ? v.candidate_names.size()
+                                                                        : 0;
+  const std::uint32_t n = ResizeBounded(out.candidates, candidates, gearpath_MAX_CANDIDATES);
+  auto names = dds::MutableView(out.candidates);
+  for (std::uint32_t i = 0; i < n; ++i) CopyTruncated(names[i], v.candidate_names[i]);
+  CopyTruncated(out.reason, v.reason.view());
+}
+
+void FillEnvelopeIndicators(std::string_view machine_id, const BlockResult& r,
+                            gearpath_EnvelopeIndicators& out) noexcept {
+  CopyTruncated(out.machine_id, machine_id);
+  out.block_sequence = r.sequence;
+  out.block_t0_ns = r.t0_ns;
+  out.band.centre_hz = r.reconstructed_band.centre_hz;
+  out.band.width_hz = r.reconstructed_band.width_hz;
+  out.band.level = r.reconstructed_band.level;
+  out.band.kurtosis = r.reconstructed_band.kurtosis;
+  out.band.significant = r.reconstructed_band.significant;
+  const std::uint32_t n = ResizeBounded(out.shafts, r.shafts.size(), gearpath_MAX_SHAFTS);
+  auto shafts = dds::MutableView(out.shafts);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const BlockShaftIndicator& s = r.shafts[i];
+    CopyTruncated(shafts[i].shaft_name, s.shaft);
+    shafts[i].characteristic_frequency_hz = s.characteristic_hz;
+    shafts[i].raw_indicator = s.raw;
+    shafts[i].reconstructed_indicator = s.reconstructed;
+    shafts[i].enhancement_percent = s.enhancement_percent;
+    for (std::size_t h = 0; h < gearpath_HARMONICS && h < kIndicatorHarmonics; ++h) {
+      shafts[i].raw_harmonics[h] = s.raw_harmonics[h];
+      shafts[i].reconstructed_harmonics[h] = s.reconstructed_harmonics[h];
+    }
+  }
+  out.speed_hz = r.speed_hz;
+  out.speed_source = WireSpeedSource(r.speed_source);
+}
+
+void FillStatus(const StatusFigures& figures, std::span<const std::string> machine_ids,
+                const std::map<std::string, MachineCounters, std::less<>>& counters,
+                gearpath_Status& out) noexcept {
+  CopyTruncated(out.daemon_id, figures.daemon_id);
+  out.state = figures.state;
+  out.timestamp_ns = figures.timestamp_ns;
+  out.uptime_s = figures.uptime_s;
+  const std::uint32_t n = ResizeBounded(out.machines, machine_ids.size(), gearpath_MAX_MACHINES);
+  auto machines = dds::MutableView(out.machines);
+  static const MachineCounters kNone;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const auto it = counters.find(machine_ids[i]);
+    const MachineCounters& c = it == counters.end() ? kNone : it->second;
+    gearpath_MachineStatus& m = machines[i];
+    CopyTruncated(m.machine_id, machine_ids[i]);
+    m.blocks_received = c.received;
+    m.blocks_processed = c.processed;
+    m.blocks_rejected = c.rejected;
+    CopyTruncated(m.last_rejection_reason, c.last_rejection);
+    m.last_alpha = c.last_alpha;
+    m.last_condition_number = c.last_condition;
+    m.last_relative_residual = c.last_residual;
+    m.latency_last_ms = c.latency_last_ms;
+    m.latency_max_ms = c.latency_max_ms;
+  }
+}
+
+}  // namespace gearpath::daemon

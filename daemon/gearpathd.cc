@@ -1,0 +1,433 @@
+#include "daemon/gearpathd.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <thread>
+
+#include "daemon/dds_bridge.h"
+#include "daemon/machine_runtime.h"
+#include "daemon/systemd_notify.h"
+#include "idl/dds/gearpath_topics.h"
+
+namespace gearpath::daemon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using std::chrono::duration;
+using std::chrono::duration_cast;
+using std::chrono::milliseconds;
+using std::chrono::nanoseconds;
+
+std::int64_t RealtimeNs() {
+  return duration_cast<nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+Clock::duration Seconds(double s) { return duration_cast<Clock::duration>(duration<double>(s)); }
+
+constexpr dds_attach_t kBlocksToken = 1;
+constexpr dds_attach_t kGuardToken = 2;
+constexpr std::size_t kMaxForeignIdsLogged = 64;
+
+// A configuration and its built machines, handed from the lifecycle thread to the loop.
+struct Generation {
+  DaemonConfig config;
+  MachineSet machines;
+};
+
+}  // namespace
+
+bool ApplyLogLevel(const std::string& level) {
+  const auto parsed = spdlog::level::from_str(level);
+  if (parsed == spdlog::level::off && level != "off") return false;
+  spdlog::set_level(parsed);
+  return true;
+}
+
+struct Gearpathd::Impl {
+  Impl(Generation first, DaemonOptions opts)
+      : options(std::move(opts)),
+        lifecycle_config(first.config),
+        domain(first.config.domain_id),
+        participant(domain),
+        block_topic(participant, first.config.topics.accel_block),
+        dominant_topic(participant, first.config.topics.dominant_path),
+        gear_topic(participant, first.config.topics.suspected_gear),
+        indicators_topic(participant, first.config.topics.envelope_indicators),
+        status_topic(participant, first.config.topics.status),
+        block_reader(block_topic),
+        dominant_writer(dominant_topic),
+        gear_writer(gear_topic),
+        indicators_writer(indicators_topic),
+        status_writer(status_topic),
+        blocks_ready(block_reader),
+        guard(participant),
+        waitset(participant) {
+    waitset.Attach(blocks_ready, kBlocksToken);
+    waitset.Attach(guard, kGuardToken);
+    Adopt(std::move(first));
+    samples.resize(1);
+    infos.resize(1);
+  }
+
+  // ---- lifecycle thread ----
+  int Run(const SignalEvents& signals);
+  void Reload();
+
+  // ---- processing thread ----
+  void Loop();
+  void Adopt(Generation generation);
+  void AdoptPending();
+  void DrainBlocks();
+  void HandleBlock(const gearpath_AccelBlock& sample, const dds::SampleInfo& info);
+  void Housekeeping(bool force_status);
+  void PublishStatus(gearpath_DaemonState state);
+  void LogThroughput();
+
+  DaemonOptions options;
+  DaemonConfig lifecycle_config;  // the configuration in force, as the lifecycle thread knows it
+  const Clock::time_point started = Clock::now();
+
+  dds::Domain domain;
+  dds::Participant participant;
+  dds::Topic<gearpath_AccelBlock> block_topic;
+  dds::Topic<gearpath_DominantPath> dominant_topic;
+  dds::Topic<gearpath_SuspectedGear> gear_topic;
+  dds::Topic<gearpath_EnvelopeIndicators> indicators_topic;
+  dds::Topic<gearpath_Status> status_topic;
+  dds::Reader<gearpath_AccelBlock> block_reader;
+  dds::Writer<gearpath_DominantPath> dominant_writer;
+  dds::Writer<gearpath_SuspectedGear> gear_writer;
+  dds::Writer<gearpath_EnvelopeIndicators> indicators_writer;
+  dds::Writer<gearpath_Status> status_writer;
+  dds::ReadCondition blocks_ready;
+  dds::GuardCondition guard;
+  dds::WaitSet waitset;
+
+  // Shared between the threads.
+  std::atomic<bool> stop_requested{false};
+  std::atomic<bool> loop_failed{false};
+  std::atomic<int> state{gearpath_STARTING};
+  std::mutex pending_mutex;
+  std::optional<Generation> pending;
+
+  // Processing thread only (after construction).
+  MachineSet machines;
+  std::vector<std::string> machine_ids;  // configuration order, for Status
+  std::string daemon_id;
+  Clock::duration status_period{};
+  Clock::duration throughput_period{};
+  Clock::duration watchdog_period{};  // half of systemd's WatchdogSec; zero: no watchdog
+  std::map<std::string, MachineCounters, std::less<>> counters;
+  std::map<std::string, MachineCounters, std::less<>> counters_at_last_summary;
+  std::uint64_t foreign_blocks = 0;
+  std::uint64_t foreign_blocks_at_last_summary = 0;
+  std::set<std::string, std::less<>> foreign_ids;
+  std::uint64_t publish_failures = 0;
+  Clock::time_point next_status{};
+  Clock::time_point next_throughput{};
+  Clock::time_point next_watchdog{};
+  Clock::time_point last_summary = Clock::now();
+  std::vector<dds::Owned<gearpath_AccelBlock>> samples;
+  std::vector<dds::SampleInfo> infos;
+  std::vector<ChannelInfo> channel_scratch;
+  dds::Owned<gearpath_DominantPath> dominant_sample;
+  dds::Owned<gearpath_SuspectedGear> gear_sample;
+  dds::Owned<gearpath_EnvelopeIndicators> indicators_sample;
+  dds::Owned<gearpath_Status> status_sample;
+};
+
+void Gearpathd::Impl::Adopt(Generation generation) {
+  const DaemonConfig& c = generation.config;
+  machines = std::move(generation.machines);
+  machine_ids.clear();
+  for (const auto& m : c.machines) machine_ids.push_back(m.id);
+  // Counters survive a reload for machines still configured.
+  std::map<std::string, MachineCounters, std::less<>> kept;
+  for (const auto& id : machine_ids) {
+    auto it = counters.find(id);
+    kept[id] = it == counters.end() ? MachineCounters{} : std::move(it->second);
+  }
+  counters = std::move(kept);
+  daemon_id = c.daemon_id;
+  status_period = Seconds(c.status_period_s);
+  throughput_period = Seconds(c.throughput_log_period_s);
+  const auto now = Clock::now();
+  next_status = now;
+  next_throughput = now + throughput_period;
+}
+
+void Gearpathd::Impl::AdoptPending() {
+  std::optional<Generation> next;
+  {
+    std::lock_guard lock(pending_mutex);
+    next.swap(pending);
+  }
+  if (!next) return;
+  Adopt(std::move(*next));
+  spdlog::info("reload: now running {} machine(s)", machine_ids.size());
+}
+
+void Gearpathd::Impl::PublishStatus(gearpath_DaemonState s) {
+  StatusFigures figures;
+  figures.daemon_id = daemon_id;
+  figures.state = s;
+  figures.timestamp_ns = RealtimeNs();
+  figures.uptime_s = duration<double>(Clock::now() - started).count();
+  FillStatus(figures, machine_ids, counters, *status_sample);
+  if (Status st = status_writer.Write(*status_sample); !st) {
+    ++publish_failures;
+    spdlog::error("Status not published: {}", st.error());
+  }
+}
+
+void Gearpathd::Impl::LogThroughput() {
+  const auto now = Clock::now();
+  const double seconds = std::max(1e-9, duration<double>(now - last_summary).count());
+  std::string line;
+  for (const auto& id : machine_ids) {
+    const MachineCounters& c = counters[id];
+    const MachineCounters& before = counters_at_last_summary[id];
+    std::string reasons;
+    for (const auto& [reason, n] : c.rejected_by_reason) {
+      const auto it = before.rejected_by_reason.find(reason);
+      const std::uint64_t delta = n - (it == before.rejected_by_reason.end() ? 0 : it->second);
+      if (delta > 0) reasons += fmt::format("{}{} {}", reasons.empty() ? "" : ", ", reason, delta);
+    }
+    line += fmt::format("{}{}: {} processed ({:.2f}/s), {} rejected{}, {} lost, latency last "
+                        "{:.1f} ms max {:.1f} ms",
+                        line.empty() ? "" : "; ", id, c.processed - before.processed,
+                        static_cast<double>(c.processed - before.processed) / seconds,
+                        c.rejected - before.rejected,
+                        reasons.empty() ? "" : " (" + reasons + ")", c.lost - before.lost,
+                        c.latency_last_ms, c.latency_max_ms);
+  }
+  const std::uint64_t foreign = foreign_blocks - foreign_blocks_at_last_summary;
+  spdlog::info("throughput over {:.0f} s: {}{}", seconds, line,
+               foreign > 0 ? fmt::format("; {} block(s) of other machines ignored", foreign)
+                           : std::string());
+  std::uint64_t processed = 0, rejected = 0;
+  for (const auto& [id, c] : counters) {
+    processed += c.processed;
+    rejected += c.rejected;
+  }
+  NotifySystemd(fmt::format("STATUS=running: {} machine(s), {} block(s) processed, {} "
+                            "rejected since start",
+                            machine_ids.size(), processed, rejected));
+  counters_at_last_summary = counters;
+  foreign_blocks_at_last_summary = foreign_blocks;
+  last_summary = now;
+}
+
+void Gearpathd::Impl::Housekeeping(bool force_status) {
+  const auto now = Clock::now();
+  if (force_status || now >= next_status) {
+    PublishStatus(static_cast<gearpath_DaemonState>(state.load()));
+    next_status += status_period;
+    if (next_status <= now) next_status = now + status_period;
+  }
+  if (now >= next_throughput) {
+    LogThroughput();
+    next_throughput = now + throughput_period;
+  }
+  if (watchdog_period.count() > 0 && now >= next_watchdog) {
+    NotifySystemd("WATCHDOG=1");
+    next_watchdog = now + watchdog_period / 2;
+  }
+}
+
+void Gearpathd::Impl::HandleBlock(const gearpath_AccelBlock& sample,
+                                  const dds::SampleInfo& info) {
+  const std::string_view id = dds::GetString(sample.machine_id);
+  const auto it = machines.machines.find(id);
+  if (it == machines.machines.end()) {
+    // Another daemon's machine (or nobody's): not ours to judge, so not a rejection.
+    ++foreign_blocks;
+    if (foreign_ids.size() < kMaxForeignIdsLogged && foreign_ids.emplace(id).second) {
+      spdlog::info("ignoring blocks of machine \"{}\": not in this daemon's configuration", id);
+    }
+    return;
+  }
+  MachineRuntime& m = *it->second;
+  MachineCounters& c = counters[m.id];
+  ++c.received;
+  const AccelBlockView view = ViewOf(sample, channel_scratch);
+  const ProcessOutcome outcome = m.processor.Process(view, m.result);
+  if (!outcome.accepted()) {
+    const std::string_view reason = ToString(outcome.reason);
+    ++c.rejected;
+    auto r = c.rejected_by_reason.find(reason);
+    if (r == c.rejected_by_reason.end()) r = c.rejected_by_reason.emplace(reason, 0).first;
+    ++r->second;
+    c.last_rejection = fmt::format("{}: {}", reason, outcome.message.view());
+    spdlog::warn("{}: block {} rejected ({}): {}", m.id, view.sequence, reason,
+                 outcome.message.view());
+    return;
+  }
+  const BlockResult& r = m.result;
+  ++c.processed;
+  if (r.sequence_gap > 0) {
+    c.lost += r.sequence_gap;
+    spdlog::warn("{}: {} block(s) missing before block {}", m.id, r.sequence_gap, r.sequence);
+  }
+  if (r.sequence_restarted) {
+    spdlog::info("{}: sequence restarted at block {} (publisher restart)", m.id, r.sequence);
+  }
+  FillDominantPath(m.id, r, *dominant_sample);
+  FillSuspectedGear(m.id, r, *gear_sample);
+  FillEnvelopeIndicators(m.id, r, *indicators_sample);
+  for (Status st : {dominant_writer.Write(*dominant_sample), gear_writer.Write(*gear_sample),
+                    indicators_writer.Write(*indicators_sample)}) {
+    if (!st) {
+      ++publish_failures;
+      spdlog::error("{}: result of block {} not published: {}", m.id, r.sequence, st.error());
+    }
+  }
+  c.last_alpha = r.regularisation.alpha_median;
+  c.last_condition = r.regularisation.condition_max;
+  c.last_residual = r.regularisation.relative_residual;
+  if (info.source_timestamp > 0) {
+    // Writer's timestamp to results published: includes the time the block waited in the
+    // reader's history, which is what a late result costs the plant.
+    c.latency_last_ms = std::max(0.0, static_cast<double>(RealtimeNs() - info.source_timestamp) *
+                                          1e-6);
+    c.latency_max_ms = std::max(c.latency_max_ms, c.latency_last_ms);
+  }
+  spdlog::debug("{}: block {} -> path {}, {} {}", m.id, r.sequence, r.dominant_path_name,
+                ToString(r.verdict.state), r.verdict.gear_name);
+}
+
+void Gearpathd::Impl::DrainBlocks() {
+  while (!stop_requested.load()) {
+    auto taken = block_reader.Take(samples, infos);
+    if (!taken) {
+      spdlog::error("taking AccelBlocks failed: {}", taken.error());
+      return;
+    }
+    if (*taken == 0) return;
+    if (infos[0].valid_data) HandleBlock(*samples[0], infos[0]);
+    AdoptPending();  // a reload takes effect between two blocks
+    Housekeeping(false);
+  }
+}
+
+void Gearpathd::Impl::Loop() {
+  std::array<dds_attach_t, 2> triggered{};
+  Housekeeping(true);
+  while (!stop_requested.load()) {
+    auto wait = next_status - Clock::now();
+    if (watchdog_period.count() > 0) wait = std::min(wait, next_watchdog - Clock::now());
+    wait = std::max<Clock::duration>(wait, Clock::duration::zero());
+    auto woke = waitset.Wait(triggered, duration_cast<nanoseconds>(wait));
+    if (!woke) {
+      spdlog::critical("DDS WaitSet failed: {}", woke.error());
+      loop_failed = true;
+      return;
+    }
+    (void)guard.TakeTriggered();
+    if (stop_requested.load()) break;
+    AdoptPending();
+    DrainBlocks();
+    Housekeeping(false);
+  }
+  PublishStatus(gearpath_STOPPING);  // the last word: subscribers see a clean stop
+}
+
+void Gearpathd::Impl::Reload() {
+  NotifySystemd("RELOADING=1\nSTATUS=reloading the configuration");
+  state = gearpath_RELOADING;
+  const std::string origin = options.config_path.empty() ? std::string(kEmbeddedOrigin)
+                                                         : options.config_path;
+  spdlog::info("SIGHUP: reloading {}", origin);
+  auto config = options.config_path.empty()
+                    ? ParseDaemonConfig(DefaultConfigText(), kEmbeddedOrigin)
+                    : LoadDaemonConfigFile(options.config_path);
+  std::string failure;
+  std::optional<MachineSet> built;
+  if (!config) {
+    failure = config.error();
+  } else if (config->normalized["dds"] != lifecycle_config.normalized["dds"]) {
+    failure = "dds: the domain and topic names cannot change on reload (restart the daemon)";
+  } else {
+    auto machines_built = BuildMachines(*config);
+    if (!machines_built) {
+      failure = machines_built.error();
+    } else {
+      built.emplace(std::move(machines_built.value()));
+    }
+  }
+  if (!built) {
+    spdlog::error("reload failed, still running the previous configuration:\n{}", failure);
+    state = gearpath_DEGRADED;
+    NotifySystemd("READY=1\nSTATUS=reload failed, running the previous configuration");
+    return;
+  }
+  if (options.log_level_override.empty()) ApplyLogLevel(config->log_level);
+  for (const auto& [id, m] : built->machines) spdlog::info("machine {}: {}", id, m->summary);
+  lifecycle_config = *config;
+  {
+    std::lock_guard lock(pending_mutex);
+    pending.emplace(Generation{std::move(config.value()), std::move(*built)});
+  }
+  (void)guard.Trigger();
+  state = gearpath_RUNNING;
+  NotifySystemd(fmt::format("READY=1\nSTATUS=running: {} machine(s) (reloaded)",
+                            lifecycle_config.machines.size()));
+}
+
+int Gearpathd::Impl::Run(const SignalEvents& signals) {
+  watchdog_period = duration_cast<Clock::duration>(SystemdWatchdogPeriod()) / 2;
+  next_watchdog = Clock::now();
+  state = gearpath_RUNNING;
+  std::thread loop([this] { Loop(); });
+  NotifySystemd(fmt::format("READY=1\nSTATUS=running: {} machine(s)", machine_ids.size()));
+  spdlog::info("gearpathd \"{}\" running on DDS domain {}: {} machine(s), input topic \"{}\"",
+               lifecycle_config.daemon_id, lifecycle_config.domain_id,
+               lifecycle_config.machines.size(), lifecycle_config.topics.accel_block);
+  int exit_code = 0;
+  for (;;) {
+    const SignalEvent event = signals.Wait(milliseconds(200));
+    if (event == SignalEvent::kTerminate) {
+      spdlog::info("signal {}: stopping", signals.signal_of_last_event());
+      break;
+    }
+    if (event == SignalEvent::kReload) Reload();
+    if (loop_failed.load()) {
+      exit_code = 1;
+      break;
+    }
+  }
+  NotifySystemd("STOPPING=1\nSTATUS=stopping");
+  state = gearpath_STOPPING;
+  stop_requested = true;
+  (void)guard.Trigger();
+  loop.join();
+  spdlog::info("stopped");
+  return exit_code;
+}
+
+Gearpathd::Gearpathd(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Gearpathd::~Gearpathd() = default;
+
+Result<std::unique_ptr<Gearpathd>> Gearpathd::Create(DaemonConfig config, MachineSet machines,
+                                                     DaemonOptions options) {
+  try {
+    auto impl = std::make_unique<Impl>(Generation{std::move(config), std::move(machines)},
+                                       std::move(options));
+    return std::unique_ptr<Gearpathd>(new Gearpathd(std::move(impl)));
+  } catch (const std::exception& e) {
+    return Error{fmt::format("DDS set-up failed: {}", e.what())};
+  }
+}
+
+int Gearpathd::Run(const SignalEvents& signals) { return impl_->Run(signals); }
+
+}  // namespace gearpath::daemon

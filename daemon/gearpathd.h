@@ -1,0 +1,61 @@
+// Gearpathd: the daemon's lifecycle - DDS endpoints, the processing thread, status, reload, stop.
+//
+// Threads (no work in Cyclone listeners, none in signal handlers):
+//  - the lifecycle thread (the caller of Run, normally main): reads SIGTERM/SIGINT/SIGHUP from a
+//    signalfd; on SIGHUP it re-reads the configuration and rebuilds every machine (FRF sets,
+//    processors) itself, off the processing thread, and hands the result over; on SIGTERM it
+//    asks the processing thread to stop and joins it.
+//  - the processing thread: one WaitSet with the AccelBlock ReadCondition and a GuardCondition
+//    (stop / reload handover). It takes one block at a time, processes it INLINE and publishes
+//    the results, and publishes Status when due (the WaitSet timeout is the status timer).
+// Why inline rather than a worker per machine: a block takes milliseconds against a block
+// period of a fraction of a second; blocks of one machine must be processed in order anyway
+// (sequence tracking, baseline learning); the reader history (keep-all, bounded per machine,
+// docs/topics.md) is the queue, so there is no second queue, no copy of the 4 MiB samples and
+// no lock on the counters; and machines can be spread over several daemons (several
+// processes, several cores) by configuration. A stop request is seen between two blocks, so
+// the block in hand is finished and published (a block is far shorter than the 2 s budget).
+//
+// systemd: READY=1 once the DDS endpoints exist and every machine is built; RELOADING=1 /
+// READY=1 around a reload; STOPPING=1 on stop; STATUS= lines; WATCHDOG=1 from the processing
+// loop on every iteration - also when idle. The watchdog proves the loop is alive (not wedged
+// in a block or in DDS); it does not require blocks to flow, since a machine at standstill is
+// not a daemon failure (missing blocks are visible on Status as received counts that stop).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/common/result.h"
+#include "daemon/daemon_config.h"
+#include "daemon/machine_runtime.h"
+#include "daemon/signal_events.h"
+
+namespace gearpath::daemon {
+
+struct DaemonOptions {
+  std::string config_path;         // re-read on SIGHUP; empty: the embedded default
+  std::string log_level_override;  // --log-level; empty: the configuration's
+};
+
+class Gearpathd {
+ public:
+  // Creates the DDS endpoints for `config` and takes over its built machines (BuildMachines).
+  // Errors name the DDS call that failed.
+  static Result<std::unique_ptr<Gearpathd>> Create(DaemonConfig config, MachineSet machines,
+                                                   DaemonOptions options);
+  ~Gearpathd();
+
+  // Runs until SIGTERM/SIGINT; returns the process exit code (0 after a clean stop).
+  int Run(const SignalEvents& signals);
+
+ private:
+  struct Impl;
+  explicit Gearpathd(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+// Applies a spdlog level name ("info", "warn", ...); false if unknown.
+bool ApplyLogLevel(const std::string& level);
+
+}  // namespace gearpath::daemon

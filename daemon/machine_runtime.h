@@ -1,0 +1,51 @@
+// MachineRuntime: one configured machine, ready to process blocks; and its counters.
+//
+// BuildMachines turns a validated DaemonConfig into one BlockProcessor per machine (FRF set
+// loaded, everything that depends only on the FRFs precomputed; the first block of a new
+// length configures that length), all or nothing: a reload that fails for one machine changes
+// none. MachineCounters live apart from the processors so that they survive a reload (Status
+// keeps counting across SIGHUP).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/common/result.h"
+#include "core/pipeline/block_processor.h"
+#include "daemon/daemon_config.h"
+
+namespace gearpath::daemon {
+
+struct MachineRuntime {
+  std::string id;
+  std::string summary;  // one line for the start-up log: FRF shape, band, paths, method
+  BlockProcessor processor;
+  BlockResult result;   // reused block after block (allocation-free once sized)
+};
+
+// Everything one configuration needs to run: machines by id.
+struct MachineSet {
+  std::map<std::string, std::unique_ptr<MachineRuntime>, std::less<>> machines;
+};
+
+// Loads every FRF set, builds and prepares every processor. Errors name the machine's key.
+Result<MachineSet> BuildMachines(const DaemonConfig& config);
+
+struct MachineCounters {
+  std::uint64_t received = 0;
+  std::uint64_t processed = 0;
+  std::uint64_t rejected = 0;
+  std::uint64_t lost = 0;           // blocks missing from the sequence (gaps), not rejected
+  std::map<std::string, std::uint64_t, std::less<>> rejected_by_reason;
+  std::string last_rejection;       // "<reason>: <message>" of the last rejection
+  double last_alpha = 0.0;
+  double last_condition = 0.0;
+  double last_residual = 0.0;
+  double latency_last_ms = 0.0;
+  double latency_max_ms = 0.0;
+};
+
+}  // namespace gearpath::daemon

@@ -1,0 +1,181 @@
+#include "daemon/machine_setup_builder.h"
+
+#include <fmt/format.h>
+
+#include "core/io/frf_set_io.h"
+
+namespace gearpath::daemon {
+namespace {
+
+using nlohmann::json;
+
+Axis AxisFromName(const std::string& name) {
+  if (name == "y") return Axis::kY;
+  if (name == "z") return Axis::kZ;
+  return Axis::kX;  // the schema admits only x, y, z
+}
+
+std::string Names(const std::vector<TransferPath>& paths) {
+  std::string out;
+  for (const auto& p : paths) out += (out.empty() ? "" : ", ") + p.name;
+  return out;
+}
+
+template <typename T>
+T Get(const json& j, const char* key) {
+  return j.at(key).get<T>();
+}
+
+AnalysisOptions TranslateOptions(const json& m) {
+  AnalysisOptions o;
+  const json& a = m.at("analysis");
+  const json& inv = a.at("inverse");
+  const auto method = Get<std::string>(inv, "method");
+  o.identification.method = method == "tikhonov"        ? InverseMethod::kTikhonov
+                            : method == "least_squares" ? InverseMethod::kLeastSquares
+                                                        : InverseMethod::kMwi;
+  const auto rule = Get<std::string>(inv, "alpha_rule");
+  auto& reg = o.identification.regularisation;
+  reg.rule = rule == "fixed"         ? RegularisationRule::kFixed
+             : rule == "discrepancy" ? RegularisationRule::kDiscrepancy
+             : rule == "gcv"         ? RegularisationRule::kGcv
+                                     : RegularisationRule::kNoiseFloor;
+  reg.parameter = Get<double>(inv, "alpha");
+  reg.relative_noise = Get<double>(inv, "relative_noise");
+  reg.noise_rms = Get<double>(inv, "noise_rms");
+  reg.discrepancy_factor = Get<double>(inv, "discrepancy_factor");
+  o.identification.iterations = Get<int>(inv, "iterations");
+
+  const json& acq = m.at("acquisition");
+  o.sample_rate_hz = Get<double>(acq, "sample_rate_hz");
+  o.sample_rate_tolerance = Get<double>(acq, "sample_rate_tolerance");
+  o.min_samples_per_channel = Get<std::uint32_t>(acq, "min_samples_per_channel");
+  o.max_samples_per_channel = Get<std::uint32_t>(acq, "max_samples_per_channel");
+
+  o.nominal_speed_hz = Get<double>(m, "nominal_speed_hz");
+  o.speed_search_lo_hz = Get<double>(a.at("speed"), "search_lo_hz");
+  o.speed_search_hi_hz = Get<double>(a.at("speed"), "search_hi_hz");
+
+  const json& dom = a.at("dominant_path");
+  const auto criterion = Get<std::string>(dom, "criterion");
+  o.criterion = criterion == "band_energy" ? AnalysisOptions::DominantCriterion::kBandEnergy
+                : criterion == "indicator" ? AnalysisOptions::DominantCriterion::kIndicator
+                                           : AnalysisOptions::DominantCriterion::kSidebandEnergy;
+  o.analysis_band_lo_hz = Get<double>(dom, "band_lo_hz");
+  o.analysis_band_hi_hz = Get<double>(dom, "band_hi_hz");
+  o.sideband_orders = Get<int>(dom, "sideband_orders");
+  o.indicator_channel = Get<int>(dom, "indicator_channel");
+
+  const json& env = a.at("envelope");
+  o.kurtogram_max_level = Get<int>(env, "kurtogram_max_level");
+  o.min_band_width_hz = Get<double>(env, "min_band_width_hz");
+  o.remove_mesh_tones = Get<bool>(env, "remove_mesh_tones");
+  o.harmonic_tolerance = Get<double>(env, "harmonic_tolerance");
+
+  const json& base = a.at("baseline");
+  o.baseline_blocks = Get<int>(base, "learning_blocks");
+  o.baseline_k_sigma = Get<double>(base, "k_sigma");
+  o.alarm_factor = Get<double>(base, "alarm_factor");
+  o.raw_thresholds = Get<std::vector<double>>(base, "raw_thresholds");
+  o.reconstructed_thresholds = Get<std::vector<double>>(base, "reconstructed_thresholds");
+  return o;
+}
+
+// The validated gear_train object (names already cross-checked by daemon_config) as a layout.
+TrainLayout TranslateTrain(const json& train) {
+  TrainLayout layout;
+  const json& shafts = train.at("shafts");
+  for (const auto& s : shafts) layout.shafts.push_back({Get<std::string>(s, "name")});
+  auto shaft_of = [&](const std::string& gear) {
+    for (std::size_t i = 0; i < shafts.size(); ++i) {
+      for (const auto& g : shafts[i].at("gears")) {
+        if (g.get<std::string>() == gear) return static_cast<int>(i);
+      }
+    }
+    return -1;
+  };
+  for (const auto& g : train.at("gears")) {
+    const auto name = Get<std::string>(g, "name");
+    layout.gears.push_back({name, Get<int>(g, "teeth"), shaft_of(name)});
+  }
+  auto gear_index = [&](const std::string& name) {
+    for (std::size_t i = 0; i < layout.gears.size(); ++i) {
+      if (layout.gears[i].name == name) return static_cast<int>(i);
+    }
+    return -1;
+  };
+  for (const auto& stage : train.at("stages")) {
+    layout.meshes.push_back({gear_index(Get<std::string>(stage, "driver")),
+                             gear_index(Get<std::string>(stage, "driven"))});
+  }
+  layout.input_shaft = 0;
+  return layout;
+}
+
+}  // namespace
+
+Result<FrfSet> LoadFrfSource(const std::string& source, const std::string& key_path) {
+  if (source.starts_with(kBuiltinPrefix)) {
+    auto set = BuiltinFrfSet(source.substr(kBuiltinPrefix.size()));
+    if (!set) return Error{fmt::format("{}: {}: {}", key_path, source, set.error())};
+    return set;
+  }
+  auto set = ReadFrfSet(source);
+  if (!set) return Error{fmt::format("{}: {}", key_path, set.error())};
+  if (set->decoupled.bins() == 0) {
+    return Error{fmt::format("{}: {}: the set has no decoupled FRF matrix (run `gearpath "
+                             "decouple` on it first)",
+                             key_path, source)};
+  }
+  return set;
+}
+
+Result<MachineSetup> BuildMachineSetup(const MachineConfig& machine) {
+  const json& m = machine.settings;
+  const std::string& at = machine.key_path;
+  auto set = LoadFrfSource(machine.frf_set, at + ".frf_set");
+  if (!set) return Error{set.error()};
+
+  MachineSetup setup;
+  setup.machine_id = machine.id;
+  setup.frf_set = std::move(set.value());
+  FrfSet& frf = setup.frf_set;
+
+  const json& channels = m.at("channels");
+  for (std::size_t i = 0; i < channels.size(); ++i) {
+    const auto sensor = Get<std::string>(channels[i], "sensor");
+    const auto axis = Get<std::string>(channels[i], "axis");
+    const long row = Get<long>(channels[i], "frf_row");
+    if (row >= 0) {
+      if (static_cast<std::size_t>(row) >= frf.channels.size()) {
+        return Error{fmt::format("{}.channels[{}].frf_row: row {} is out of range (the FRF set "
+                                 "has {} response channels)",
+                                 at, i, row, frf.channels.size())};
+      }
+      frf.channels[static_cast<std::size_t>(row)] = {sensor, axis};
+    }
+    setup.block_channels.push_back({sensor, AxisFromName(axis)});
+  }
+
+  const json& paths = m.at("paths");
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    const auto name = Get<std::string>(paths[i], "name");
+    TransferPath* path = nullptr;
+    for (auto& p : frf.paths) path = p.name == name ? &p : path;
+    if (path == nullptr) {
+      return Error{fmt::format("{}.paths[{}].name: the FRF set has no path \"{}\" (its paths: "
+                               "{})",
+                               at, i, name, Names(frf.paths))};
+    }
+    path->gears = Get<std::vector<std::string>>(paths[i], "gears");
+  }
+
+  setup.train = TranslateTrain(m.at("gear_train"));
+  if (auto ratios = ShaftRateRatios(setup.train); !ratios) {
+    return Error{fmt::format("{}.gear_train: {}", at, ratios.error())};
+  }
+  setup.options = TranslateOptions(m);
+  return setup;
+}
+
+}  // namespace gearpath::daemon

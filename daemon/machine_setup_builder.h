@@ -1,0 +1,28 @@
+// MachineSetup from configuration: everything the pipeline needs for one configured machine.
+//
+// Loads the machine's FRF set (a directory in the docs/frf_format.md format, or a built-in set
+// computed at start-up, `builtin:table1`: the seed's Table-1 lumped model decoupled through
+// Eq. 22), applies the channel mapping (block channel -> FRF row; an explicit frf_row relabels
+// that FRF row with the block's sensor and axis) and the path -> gear overrides, and
+// translates the gear train and the analysis options into the pipeline's types. Every error
+// names the configuration key it comes from (`machines[0].frf_set: ...`).
+#pragma once
+
+#include <string>
+
+#include "core/common/result.h"
+#include "core/frf/frf_set.h"
+#include "core/pipeline/block_processor.h"
+#include "daemon/daemon_config.h"
+
+namespace gearpath::daemon {
+
+// The FRF set named by a machine's `frf_set` key; errors are prefixed with `key_path`.
+Result<FrfSet> LoadFrfSource(const std::string& source, const std::string& key_path);
+
+// The built-in FRF sets (`builtin:<name>`); only "table1" exists.
+Result<FrfSet> BuiltinFrfSet(const std::string& name);
+
+Result<MachineSetup> BuildMachineSetup(const MachineConfig& machine);
+
+}  // namespace gearpath::daemon
