@@ -40,8 +40,10 @@
 #include "core/common/accel_block.h"
 #include "core/common/result.h"
 #include "core/diagnosis/fixed_text.h"
+#include "core/diagnosis/gear_verdict.h"
 #include "core/diagnosis/train_layout.h"
 #include "core/frf/frf_set.h"
+#include "core/inverse/identification_operator.h"
 #include "core/pipeline/block_validation.h"
 
 namespace gearpath {
@@ -50,14 +52,10 @@ inline constexpr std::size_t kIndicatorHarmonics = 5;  // seed Sec. 4.3: first f
 inline constexpr std::size_t kMaxShapes = 4;
 
 struct AnalysisOptions {
-  // --- Bearing-force identification (core/inverse) ---
-  enum class Inverse : std::uint8_t { kMwi, kTikhonov, kLeastSquares };
-  Inverse inverse = Inverse::kMwi;
-  // Regularisation: alpha (MWI) / lambda (Tikhonov) per bin, given as a relative cutoff
-  // c: the parameter whose filter factor is 1/2 at sigma = c * sigma_max(bin). Fixed per FRF
-  // set, so the per-bin operator is built once. 0 = core/inverse's default rule.
-  double relative_cutoff = 1e-3;
-  int mwi_iterations = 10;  // K (seed Algorithm 1)
+  // --- Bearing-force identification (core/inverse): method (MWI default, Tikhonov, least
+  // squares), regularisation rule (default: noise floor, eta = 1e-3, fixed per FRF set so the
+  // per-bin operator is precomputed), MWI iterations K. See identification_operator.h.
+  IdentificationOptions identification;
 
   // --- Block expectations ---
   double sample_rate_hz = 0.0;                 // required (> 0)
@@ -96,8 +94,10 @@ struct AnalysisOptions {
   double harmonic_tolerance = 0.02;     // relative tolerance on harmonic positions (speed drift)
 
   // --- Verdict ---
-  // Per-shaft indicator thresholds (same order as TrainLayout::shafts); empty = learn them.
-  std::vector<double> indicator_thresholds;
+  // Per-shaft thresholds of the raw and of the reconstructed indicator (same order as the
+  // train's shafts); both empty = learn them from the first baseline_blocks accepted blocks.
+  std::vector<double> raw_thresholds;
+  std::vector<double> reconstructed_thresholds;
   int baseline_blocks = 20;       // healthy blocks to learn from (when thresholds are empty)
   double baseline_k_sigma = 4.0;  // threshold = mean + k * sigma over the baseline blocks
   double alarm_factor = 2.0;      // Alarm when indicator > alarm_factor * threshold
@@ -114,15 +114,7 @@ struct MachineSetup {
   AnalysisOptions options;
 };
 
-enum class FaultState : std::uint8_t {
-  kLearning,   // baseline still being learned; indicators published, no verdict yet
-  kNoFault,    // every shaft's indicator under its threshold
-  kSuspected,  // a shaft's indicator over its threshold
-  kAlarm,      // over alarm_factor * threshold
-};
-std::string_view ToString(FaultState state) noexcept;
-
-struct PathShare {
+struct BlockPathShare {
   std::string_view name;     // FrfSet path name, e.g. "B5x"
   std::string_view bearing;  // FrfSet bearing description
   double energy = 0.0;       // sum over channels and analysis-band bins of |C_ij|^2
@@ -130,7 +122,7 @@ struct PathShare {
   double criterion = 0.0;    // value of the dominant-path criterion for this path
 };
 
-struct KurtogramBand {
+struct BlockEnvelopeBand {
   double centre_hz = 0.0;
   double width_hz = 0.0;
   int level = 0;              // kurtogram level (may be fractional-tree level / 1-3 split)
@@ -138,31 +130,19 @@ struct KurtogramBand {
   bool significant = false;   // false: no band stood out; the default band was used
 };
 
-struct ShaftIndicator {
+struct BlockShaftIndicator {
   std::string_view shaft;           // TrainLayout shaft name
   double characteristic_hz = 0.0;   // shaft rate at this block's speed
   double raw = 0.0;                 // sum of the five SES harmonic amplitudes, raw signal
   double reconstructed = 0.0;       // same, dominant-path contribution
   double enhancement_percent = 0.0; // 100 * reconstructed / raw (0 when raw == 0)
-  double threshold = 0.0;           // threshold the reconstructed indicator is judged against
+  double raw_threshold = 0.0;       // thresholds the indicators are judged against (learned
+  double reconstructed_threshold = 0.0;  // or configured; 0 while learning)
   std::array<double, kIndicatorHarmonics> raw_harmonics{};
   std::array<double, kIndicatorHarmonics> reconstructed_harmonics{};
 };
 
-struct GearVerdict {
-  FaultState state = FaultState::kLearning;
-  int gear = -1;                  // TrainLayout gear index of the best candidate; -1 = none
-  std::string_view gear_name;
-  int shaft = -1;                 // shaft whose harmonics stand out; -1 = none
-  std::string_view shaft_name;
-  double characteristic_hz = 0.0; // that shaft's rate
-  double confidence = 0.0;        // in [0, 1]
-  std::vector<int> candidates;    // every gear the evidence cannot exclude (indices)
-  std::vector<std::string_view> candidate_names;
-  MessageText reason;             // why, in one line (names the ambiguity when there is one)
-};
-
-struct RegularisationFigures {
+struct BlockRegularisation {
   double alpha_median = 0.0;       // regularisation parameter over in-range bins
   double condition_median = 0.0;   // condition number of the inverted operator per bin
   double condition_max = 0.0;
@@ -185,15 +165,15 @@ struct BlockResult {
   AnalysisOptions::DominantCriterion criterion = AnalysisOptions::DominantCriterion::kSidebandEnergy;
   double analysis_band_lo_hz = 0.0;
   double analysis_band_hi_hz = 0.0;
-  std::vector<PathShare> paths;    // every path, FrfSet order
+  std::vector<BlockPathShare> paths;    // every path, FrfSet order
   int indicator_channel = -1;      // FRF row used for raw / reconstructed indicators
 
-  KurtogramBand raw_band;          // kurtogram band of the raw signal
-  KurtogramBand reconstructed_band;  // kurtogram band of the dominant-path signal
-  std::vector<ShaftIndicator> shafts;  // TrainLayout order
+  BlockEnvelopeBand raw_band;          // kurtogram band of the raw signal
+  BlockEnvelopeBand reconstructed_band;  // kurtogram band of the dominant-path signal
+  std::vector<BlockShaftIndicator> shafts;  // TrainLayout order
 
   GearVerdict verdict;
-  RegularisationFigures regularisation;
+  BlockRegularisation regularisation;
 };
 
 struct ProcessOutcome {

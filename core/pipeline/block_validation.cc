@@ -1,0 +1,167 @@
+#include "core/pipeline/block_validation.h"
+
+#include <cmath>
+
+namespace gearpath {
+namespace {
+
+const char* AxisName(Axis axis) noexcept {
+  switch (axis) {
+    case Axis::kX: return "x";
+    case Axis::kY: return "y";
+    case Axis::kZ: return "z";
+  }
+  return "?";
+}
+
+// Prints a string_view that is not NUL-terminated through "%.*s".
+int Len(std::string_view s) noexcept { return static_cast<int>(s.size()); }
+
+}  // namespace
+
+std::string_view ToString(RejectReason reason) noexcept {
+  switch (reason) {
+    case RejectReason::kNone: return "none";
+    case RejectReason::kUnknownMachine: return "unknown_machine";
+    case RejectReason::kOversized: return "oversized";
+    case RejectReason::kEmpty: return "empty";
+    case RejectReason::kWrongChannelCount: return "wrong_channel_count";
+    case RejectReason::kWrongChannelLayout: return "wrong_channel_layout";
+    case RejectReason::kWrongSampleRate: return "wrong_sample_rate";
+    case RejectReason::kBadLength: return "bad_length";
+    case RejectReason::kNonFinite: return "non_finite";
+    case RejectReason::kDuplicateSequence: return "duplicate_sequence";
+    case RejectReason::kOutOfOrderSequence: return "out_of_order_sequence";
+    case RejectReason::kNotConfigured: return "not_configured";
+  }
+  return "unknown";
+}
+
+RejectReason ValidateBlock(const AccelBlockView& block, const BlockExpectations& expected,
+                           MessageText& message) noexcept {
+  message.Clear();
+  const std::string_view machine = expected.machine_id;
+  if (block.machine_id != machine) {
+    message.Format("block is for machine '%.*s' but this processor watches machine '%.*s'",
+                   Len(block.machine_id), block.machine_id.data(), Len(machine), machine.data());
+    return RejectReason::kUnknownMachine;
+  }
+  if (block.samples.size() > expected.max_total_samples) {
+    message.Format("block of machine '%.*s' carries %zu samples, over the cap of %zu",
+                   Len(machine), machine.data(), block.samples.size(),
+                   expected.max_total_samples);
+    return RejectReason::kOversized;
+  }
+  if (block.channels.empty() || block.samples.empty() || block.samples_per_channel == 0) {
+    message.Format("block %llu of machine '%.*s' is empty (%zu channels, %u samples per channel, "
+                   "%zu samples)",
+                   static_cast<unsigned long long>(block.sequence), Len(machine), machine.data(),
+                   block.channels.size(), block.samples_per_channel, block.samples.size());
+    return RejectReason::kEmpty;
+  }
+  if (block.channels.size() != expected.channels.size()) {
+    message.Format("block has %zu channels but machine '%.*s' has %zu", block.channels.size(),
+                   Len(machine), machine.data(), expected.channels.size());
+    return RejectReason::kWrongChannelCount;
+  }
+  for (std::size_t c = 0; c < block.channels.size(); ++c) {
+    const ChannelInfo& got = block.channels[c];
+    const ExpectedChannel& want = expected.channels[c];
+    if (got.sensor != want.sensor || got.axis != want.axis) {
+      message.Format("channel %zu is %s/%s but machine '%.*s' expects %s/%s there", c,
+                     got.sensor.c_str(), AxisName(got.axis), Len(machine), machine.data(),
+                     want.sensor.c_str(), AxisName(want.axis));
+      return RejectReason::kWrongChannelLayout;
+    }
+  }
+  const double rate = block.sample_rate_hz;
+  const double want_rate = expected.sample_rate_hz;
+  if (!std::isfinite(rate) || std::abs(rate - want_rate) > expected.sample_rate_tolerance * want_rate) {
+    message.Format("sample rate %g Hz does not match machine '%.*s' (expects %g Hz +/- %g %%)", rate,
+                   Len(machine), machine.data(), want_rate, expected.sample_rate_tolerance * 100.0);
+    return RejectReason::kWrongSampleRate;
+  }
+  const std::size_t n = block.samples_per_channel;
+  if (block.samples.size() != block.channels.size() * n) {
+    message.Format("block carries %zu samples but %zu channels x %zu samples per channel = %zu",
+                   block.samples.size(), block.channels.size(), n, block.channels.size() * n);
+    return RejectReason::kBadLength;
+  }
+  if (n < expected.min_samples_per_channel) {
+    message.Format("block has %zu samples per channel, too short for machine '%.*s' "
+                   "(at least %u)",
+                   n, Len(machine), machine.data(), expected.min_samples_per_channel);
+    return RejectReason::kBadLength;
+  }
+  if (n > expected.max_samples_per_channel) {
+    message.Format("block has %zu samples per channel, too long for machine '%.*s' "
+                   "(at most %u)",
+                   n, Len(machine), machine.data(), expected.max_samples_per_channel);
+    return RejectReason::kBadLength;
+  }
+  for (std::size_t i = 0; i < block.samples.size(); ++i) {
+    if (!std::isfinite(block.samples[i])) {
+      const std::size_t c = i / n;
+      message.Format("sample %zu of channel %zu (%s/%s) is %s", i % n, c,
+                     block.channels[c].sensor.c_str(), AxisName(block.channels[c].axis),
+                     std::isnan(block.samples[i]) ? "NaN" : "infinite");
+      return RejectReason::kNonFinite;
+    }
+  }
+  return RejectReason::kNone;
+}
+
+SequenceTracker::Verdict SequenceTracker::Observe(std::uint64_t sequence,
+                                                  std::string_view machine_id,
+                                                  MessageText& message) noexcept {
+  message.Clear();
+  Verdict verdict;
+  const auto accept = [&](std::uint64_t gap) {
+    verdict.gap = gap;
+    total_gap_ += gap;
+    has_last_ = true;
+    last_ = sequence;
+    backward_run_ = 0;
+  };
+  if (!has_last_) {
+    accept(0);
+    return verdict;
+  }
+  if (sequence == last_) {
+    message.Format("block %llu of machine '%.*s' repeats the last accepted sequence number",
+                   static_cast<unsigned long long>(sequence), Len(machine_id), machine_id.data());
+    verdict.reason = RejectReason::kDuplicateSequence;
+    return verdict;
+  }
+  if (sequence > last_) {
+    accept(sequence - last_ - 1);
+    return verdict;
+  }
+  // Backward: a late block, or a publisher that restarted its numbering.
+  if (backward_run_ > 0 && sequence == backward_last_ + 1) {
+    ++backward_run_;
+  } else {
+    backward_run_ = 1;
+  }
+  backward_last_ = sequence;
+  if (backward_run_ >= resync_after_) {
+    accept(0);
+    verdict.restarted = true;
+    return verdict;
+  }
+  message.Format("block %llu of machine '%.*s' arrived after block %llu (out of order)",
+                 static_cast<unsigned long long>(sequence), Len(machine_id), machine_id.data(),
+                 static_cast<unsigned long long>(last_));
+  verdict.reason = RejectReason::kOutOfOrderSequence;
+  return verdict;
+}
+
+void SequenceTracker::Reset() noexcept {
+  has_last_ = false;
+  last_ = 0;
+  total_gap_ = 0;
+  backward_run_ = 0;
+  backward_last_ = 0;
+}
+
+}  // namespace gearpath
