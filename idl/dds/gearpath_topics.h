@@ -18,20 +18,41 @@
 
 namespace gearpath::dds {
 
-#define GEARPATH_DDS_TOPIC(type, topic_class)                                              \
-  template <>                                                                            \
-  struct TopicTraits<gearpath_##type> {                                                  \
-    static const dds_topic_descriptor_t& Descriptor() noexcept { return gearpath_##type##_desc; } \
-    static constexpr std::string_view kName = "gearpath/" #type;                        \
-    static constexpr TopicClass kClass = topic_class;                                    \
+template <>
+struct TopicTraits<gearpath_AccelBlock> {
+  static const dds_topic_descriptor_t& Descriptor() noexcept { return gearpath_AccelBlock_desc; }
+  static constexpr std::string_view kName = "gearpath/AccelBlock";
+  static constexpr TopicClass kClass = TopicClass::kBlockStream;
+};
+
+template <>
+struct TopicTraits<gearpath_DominantPath> {
+  static const dds_topic_descriptor_t& Descriptor() noexcept { return gearpath_DominantPath_desc; }
+  static constexpr std::string_view kName = "gearpath/DominantPath";
+  static constexpr TopicClass kClass = TopicClass::kLatestResult;
+};
+
+template <>
+struct TopicTraits<gearpath_SuspectedGear> {
+  static const dds_topic_descriptor_t& Descriptor() noexcept { return gearpath_SuspectedGear_desc; }
+  static constexpr std::string_view kName = "gearpath/SuspectedGear";
+  static constexpr TopicClass kClass = TopicClass::kLatestResult;
+};
+
+template <>
+struct TopicTraits<gearpath_EnvelopeIndicators> {
+  static const dds_topic_descriptor_t& Descriptor() noexcept {
+    return gearpath_EnvelopeIndicators_desc;
   }
+  static constexpr std::string_view kName = "gearpath/EnvelopeIndicators";
+  static constexpr TopicClass kClass = TopicClass::kLatestResult;
+};
 
-GEARPATH_DDS_TOPIC(AccelBlock, TopicClass::kBlockStream);
-GEARPATH_DDS_TOPIC(DominantPath, TopicClass::kLatestResult);
-GEARPATH_DDS_TOPIC(SuspectedGear, TopicClass::kLatestResult);
-GEARPATH_DDS_TOPIC(EnvelopeIndicators, TopicClass::kLatestResult);
-GEARPATH_DDS_TOPIC(Status, TopicClass::kStatus);
-
-#undef GEARPATH_DDS_TOPIC
+template <>
+struct TopicTraits<gearpath_Status> {
+  static const dds_topic_descriptor_t& Descriptor() noexcept { return gearpath_Status_desc; }
+  static constexpr std::string_view kName = "gearpath/Status";
+  static constexpr TopicClass kClass = TopicClass::kStatus;
+};
 
 }  // namespace gearpath::dds

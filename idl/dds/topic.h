@@ -84,8 +84,7 @@ template <typename T>
 class Topic : public Entity {
  public:
   // Throws std::runtime_error naming dds_create_topic and the topic name on failure.
-  explicit Topic(const Participant& participant,
-                 std::string_view name = TopicTraits<T>::kName,
+  explicit Topic(const Participant& participant, std::string_view name = TopicTraits<T>::kName,
                  const Qos& qos = TopicQos(TopicTraits<T>::kClass))
       : Topic(participant, std::string(name), qos) {}
 
@@ -186,15 +185,15 @@ class Reader : public Entity {
  private:
   Result<std::size_t> Fetch(dds_entity_t from, std::span<Owned<T>> samples,
                             std::span<SampleInfo> infos, bool take) noexcept {
-    const std::size_t n = std::min({samples.size(), infos.size(),
-                                    std::size_t{std::numeric_limits<std::uint32_t>::max()}});
+    const std::size_t n = std::min(
+        {samples.size(), infos.size(), std::size_t{std::numeric_limits<std::uint32_t>::max()}});
     if (n == 0) return std::size_t{0};
     if (scratch_.size() < n) {
       try {
         scratch_.resize(n);
       } catch (...) {
-        return Error{"Reader(\"" + topic_name_ + "\"): out of memory for " +
-                     std::to_string(n) + " sample pointers"};
+        return Error{"Reader(\"" + topic_name_ + "\"): out of memory for " + std::to_string(n) +
+                     " sample pointers"};
       }
     }
     for (std::size_t i = 0; i < n; ++i) scratch_[i] = &samples[i].get();

@@ -8,8 +8,7 @@
 namespace gearpath::dds {
 
 GuardCondition::GuardCondition(const Participant& participant)
-    : Entity(CheckDds(dds_create_guardcondition(participant.handle()),
-                      "dds_create_guardcondition"),
+    : Entity(CheckDds(dds_create_guardcondition(participant.handle()), "dds_create_guardcondition"),
              participant.node()) {}
 
 Status GuardCondition::Trigger() noexcept {
@@ -26,8 +25,7 @@ Result<bool> GuardCondition::TakeTriggered() noexcept {
 }
 
 ReadCondition::ReadCondition(const Entity& reader, std::uint32_t mask)
-    : Entity(CheckDds(dds_create_readcondition(reader.handle(), mask),
-                      "dds_create_readcondition"),
+    : Entity(CheckDds(dds_create_readcondition(reader.handle(), mask), "dds_create_readcondition"),
              reader.node()) {}
 
 WaitSet::WaitSet(const Participant& participant)
@@ -46,9 +44,8 @@ Status WaitSet::Detach(const Entity& condition) noexcept {
 
 Result<std::size_t> WaitSet::Wait(std::span<dds_attach_t> triggered,
                                   std::chrono::nanoseconds timeout) noexcept {
-  const dds_return_t rc =
-      dds_waitset_wait(handle(), triggered.data(), triggered.size(),
-                       static_cast<dds_duration_t>(timeout.count()));
+  const dds_return_t rc = dds_waitset_wait(handle(), triggered.data(), triggered.size(),
+                                           static_cast<dds_duration_t>(timeout.count()));
   if (rc < 0) return Error{DdsErrorMessage("dds_waitset_wait", rc)};
   return static_cast<std::size_t>(rc);
 }

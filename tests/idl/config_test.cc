@@ -29,8 +29,7 @@ TEST(LoopbackConfig, BindsToLoopbackWithMulticastOffAndRoomForMoreThanTenProcess
   EXPECT_NE(xml.find("<AllowMulticast>false</AllowMulticast>"), std::string::npos);
   EXPECT_NE(xml.find("<Peer Address=\"127.0.0.1\"/>"), std::string::npos);
   EXPECT_NE(xml.find("<ParticipantIndex>auto</ParticipantIndex>"), std::string::npos);
-  EXPECT_NE(xml.find("<MaxAutoParticipantIndex>60</MaxAutoParticipantIndex>"),
-            std::string::npos);
+  EXPECT_NE(xml.find("<MaxAutoParticipantIndex>60</MaxAutoParticipantIndex>"), std::string::npos);
 }
 
 class EnvironmentTest : public ::testing::Test {
@@ -55,8 +54,7 @@ class EnvironmentTest : public ::testing::Test {
 
 TEST_F(EnvironmentTest, CycloneddsUriIsAppendedAfterTheBaseConfigWhenApplied) {
   setenv("CYCLONEDDS_URI", "file:///etc/site.xml", 1);
-  EXPECT_EQ(ComposeDomainConfig("<A/>", EnvironmentConfig::kApply),
-            "<A/>,file:///etc/site.xml");
+  EXPECT_EQ(ComposeDomainConfig("<A/>", EnvironmentConfig::kApply), "<A/>,file:///etc/site.xml");
   EXPECT_EQ(ComposeDomainConfig("<A/>", EnvironmentConfig::kIgnore), "<A/>");
 }
 
@@ -71,8 +69,8 @@ TEST_F(EnvironmentTest, NothingIsAppendedWhenCycloneddsUriIsUnsetOrEmpty) {
 // below turns Cyclone's config tracing on, and the trace shows the loopback settings intact
 // and only `lo` selected.
 TEST_F(EnvironmentTest, CycloneAppliesCycloneddsUriOnTopOfTheLoopbackConfig) {
-  const std::string log = ::testing::TempDir() + "gearpath_idl_env_" +
-                          std::to_string(getpid()) + ".log";
+  const std::string log =
+      ::testing::TempDir() + "gearpath_idl_env_" + std::to_string(getpid()) + ".log";
   std::remove(log.c_str());
   setenv("CYCLONEDDS_URI",
          ("<CycloneDDS><Domain><Tracing><Verbosity>config</Verbosity><OutputFile>" + log +

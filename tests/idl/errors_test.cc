@@ -26,8 +26,7 @@ std::string ErrorOf(F&& f) {
 TEST(Errors, CreatingATopicOnADeletedParticipantNamesDdsCreateTopicAndTheTopic) {
   testing::LoopbackPair pair;
   ASSERT_EQ(dds_delete(pair.publisher.handle()), DDS_RETCODE_OK);
-  const std::string message =
-      ErrorOf([&] { Topic<gearpath_DominantPath> topic(pair.publisher); });
+  const std::string message = ErrorOf([&] { Topic<gearpath_DominantPath> topic(pair.publisher); });
   EXPECT_THAT(message, HasSubstr("dds_create_topic(\"gearpath/DominantPath\") failed: "));
   // Cyclone's reason, from dds_strretcode, follows.
   EXPECT_THAT(message, HasSubstr(dds_strretcode(DDS_RETCODE_BAD_PARAMETER)));
@@ -47,16 +46,17 @@ TEST(Errors, AHistoryDeeperThanThePerInstanceLimitNamesDdsCreateReader) {
 TEST(Errors, ASecondDomainWithTheSameIdNamesDdsCreateDomainAndTheId) {
   testing::LoopbackPair pair;
   const dds_domainid_t id = pair.domain_a.id();
-  const std::string message = ErrorOf(
-      [&] { Domain again(id, testing::TestConfig(id), EnvironmentConfig::kIgnore); });
+  const std::string message =
+      ErrorOf([&] { Domain again(id, testing::TestConfig(id), EnvironmentConfig::kIgnore); });
   EXPECT_THAT(message, HasSubstr("dds_create_domain(" + std::to_string(id) + ") failed: "));
 }
 
 TEST(Errors, MalformedConfigurationNamesDdsCreateDomain) {
   const dds_domainid_t id = testing::TestDomainBase();
   const std::string message = ErrorOf([&] {
-    Domain bad(id, "<CycloneDDS><Domain><General><AllowMulticast>sometimes</AllowMulticast>"
-                   "</General></Domain></CycloneDDS>",
+    Domain bad(id,
+               "<CycloneDDS><Domain><General><AllowMulticast>sometimes</AllowMulticast>"
+               "</General></Domain></CycloneDDS>",
                EnvironmentConfig::kIgnore);
   });
   EXPECT_THAT(message, HasSubstr("dds_create_domain(" + std::to_string(id) + ") failed: "));
@@ -64,8 +64,8 @@ TEST(Errors, MalformedConfigurationNamesDdsCreateDomain) {
 
 TEST(Errors, DdsErrorMessageNamesTheCallAndCycloneReason) {
   EXPECT_EQ(DdsErrorMessage("dds_take(\"x\")", DDS_RETCODE_TIMEOUT),
-            std::string("dds_take(\"x\") failed: ") + dds_strretcode(DDS_RETCODE_TIMEOUT) +
-                " (" + std::to_string(DDS_RETCODE_TIMEOUT) + ")");
+            std::string("dds_take(\"x\") failed: ") + dds_strretcode(DDS_RETCODE_TIMEOUT) + " (" +
+                std::to_string(DDS_RETCODE_TIMEOUT) + ")");
 }
 
 }  // namespace

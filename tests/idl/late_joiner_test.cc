@@ -17,8 +17,8 @@ namespace {
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 
-Status Publish(Writer<gearpath_SuspectedGear>& writer, const char* machine,
-               std::uint64_t sequence, const char* gear) {
+Status Publish(Writer<gearpath_SuspectedGear>& writer, const char* machine, std::uint64_t sequence,
+               const char* gear) {
   Owned<gearpath_SuspectedGear> verdict;
   if (!SetString(verdict->machine_id, machine) || !SetString(verdict->gear_name, gear)) {
     return Error{"identifier too long"};

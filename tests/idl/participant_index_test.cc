@@ -35,7 +35,8 @@ TEST(ParticipantIndex, TwelveInstancesJoinOneLoopbackDomainAndDiscoverEachOther)
   }
   Writer<gearpath_Status> writer(nodes[0]->topic);
   std::vector<Reader<gearpath_Status>> readers;
-  for (int i = 1; i < kInstances; ++i) readers.emplace_back(nodes[static_cast<std::size_t>(i)]->topic);
+  for (int i = 1; i < kInstances; ++i)
+    readers.emplace_back(nodes[static_cast<std::size_t>(i)]->topic);
   const Status matched = writer.WaitForReaders(kInstances - 1, std::chrono::seconds(20));
   EXPECT_TRUE(matched) << matched.error();
 }

@@ -23,13 +23,20 @@ constexpr std::uint32_t kSamplesPerChannel = 4096;
 // negative zero, subnormals, infinities.
 float TestSample(std::uint32_t channel, std::uint32_t n) {
   switch ((n + channel) % 7) {
-    case 0: return std::sin(0.001F * static_cast<float>(n * (channel + 1))) / 3.0F;
-    case 1: return -0.0F;
-    case 2: return std::numeric_limits<float>::denorm_min() * static_cast<float>(n % 97 + 1);
-    case 3: return std::numeric_limits<float>::max() / static_cast<float>(channel + 1);
-    case 4: return -std::numeric_limits<float>::infinity();
-    case 5: return 1.0F + std::numeric_limits<float>::epsilon() * static_cast<float>(n % 13);
-    default: return static_cast<float>(n) * 1e-7F - static_cast<float>(channel);
+    case 0:
+      return std::sin(0.001F * static_cast<float>(n * (channel + 1))) / 3.0F;
+    case 1:
+      return -0.0F;
+    case 2:
+      return std::numeric_limits<float>::denorm_min() * static_cast<float>(n % 97 + 1);
+    case 3:
+      return std::numeric_limits<float>::max() / static_cast<float>(channel + 1);
+    case 4:
+      return -std::numeric_limits<float>::infinity();
+    case 5:
+      return 1.0F + std::numeric_limits<float>::epsilon() * static_cast<float>(n % 13);
+    default:
+      return static_cast<float>(n) * 1e-7F - static_cast<float>(channel);
   }
 }
 
