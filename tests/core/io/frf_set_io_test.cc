@@ -441,5 +441,15 @@ TEST(FrfSetFromPython, ReadsTheSetWrittenByTheDocumentedPythonSnippet) {
   EXPECT_EQ(set->decoupling, "eq24");
 }
 
+// Writes MakeSet(true, true) for the Python reader of docs/frf_format.md (same ctest entry, which
+// sets GEARPATH_FRF_SET_FOR_PYTHON and checks H_pa[2, 1, 0] = sin(x) / 3 - 1e-7 j cos(x) with
+// x = 2 + f[2] + 0.1 there).
+TEST(FrfSetForPython, WritesASetForTheDocumentedPythonReader) {
+  const char* dir = std::getenv("GEARPATH_FRF_SET_FOR_PYTHON");
+  if (dir == nullptr) GTEST_SKIP() << "run through ctest entry io_frf_set_written_by_python";
+  const Status st = WriteFrfSet(MakeSet(true, true), dir);
+  ASSERT_TRUE(st.ok()) << st.error();
+}
+
 }  // namespace
 }  // namespace gearpath
