@@ -1,6 +1,8 @@
 #include "core/model/gear_train.h"
 
 #include <cmath>
+#include <cstdint>
+#include <numeric>
 #include <numbers>
 #include <optional>
 #include <set>
@@ -296,6 +298,57 @@ Result<TrainKinematics> GearTrain::Kinematics(double input_hz) const {
     k.gears.push_back(gk);
   }
   return k;
+}
+
+Result<std::int64_t> GearTrain::InputRevolutionsPerCommonPeriod() const {
+  if (Status st = Validate(); !st) return Error{st.error()};
+  constexpr std::int64_t kLimit = 1'000'000'000;
+  const std::vector<int> shaft_of_gear = ShaftOfEveryGear(*this);
+  // Speed of every shaft relative to the input as a reduced fraction num/den.
+  std::vector<std::int64_t> num(shafts.size(), 0);
+  std::vector<std::int64_t> den(shafts.size(), 0);
+  if (num.empty() || den.empty()) return Error{"gear train: no shafts"};
+  num[0] = 1;
+  den[0] = 1;
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (const StageSpec& st : stages) {
+      const auto gd = static_cast<std::size_t>(GearIndex(st.driver));
+      const auto gn = static_cast<std::size_t>(GearIndex(st.driven));
+      const auto d = static_cast<std::size_t>(shaft_of_gear[gd]);
+      const auto n = static_cast<std::size_t>(shaft_of_gear[gn]);
+      std::int64_t zd = gears[gd].teeth;
+      std::int64_t zn = gears[gn].teeth;
+      std::size_t from = d;
+      std::size_t to = n;
+      if (den[d] == 0 && den[n] != 0) {  // propagate against the power flow
+        std::swap(from, to);
+        std::swap(zd, zn);
+      }
+      if (den[from] == 0 || den[to] != 0) continue;
+      std::int64_t p = num[from] * zd;
+      std::int64_t q = den[from] * zn;
+      const std::int64_t g = std::gcd(p, q);
+      p /= g;
+      q /= g;
+      if (q > kLimit || p > kLimit) {
+        return Error{"gear train: shaft '" + shafts[to].name +
+                     "' has no common period with the input shaft below 10^9 revolutions"};
+      }
+      num[to] = p;
+      den[to] = q;
+      changed = true;
+    }
+  }
+  std::int64_t revolutions = 1;
+  for (std::size_t s = 0; s < shafts.size(); ++s) {
+    revolutions = std::lcm(revolutions, den[s]);
+    if (revolutions > kLimit) {
+      return Error{"gear train: the shafts have no common period below 10^9 input revolutions"};
+    }
+  }
+  return revolutions;
 }
 
 GearTrain GearTrain::Table1() {

@@ -14,6 +14,7 @@
 // daemon's configuration parser can fill it; call Validate() before use.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,13 @@ struct GearTrain {
 
   // Speeds for an input-shaft speed in Hz (> 0). Fails with the validation message if invalid.
   Result<TrainKinematics> Kinematics(double input_hz) const;
+
+  // The smallest number of input-shaft revolutions after which every shaft is back at its
+  // starting angle (the least common period of all shafts, in input revolutions): every shaft
+  // speed is input * p/q with p/q a product of tooth ratios, so this is lcm(q) over the shafts.
+  // For Table 1: 10 (7/10 on the intermediate and output shafts). Fails on an invalid train or
+  // if the period exceeds 10^9 input revolutions (no practical common period).
+  Result<std::int64_t> InputRevolutionsPerCommonPeriod() const;
 
   // Lookups on a valid train; -1 when the name is unknown.
   int GearIndex(const std::string& name) const;

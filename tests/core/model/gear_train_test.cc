@@ -89,6 +89,28 @@ TEST(GearTrainTest, ContactRatioMatchesTheTextbookValueForTwentyToothPairs) {
   EXPECT_NEAR(k->meshes[1].contact_ratio, 1.681, 2e-3);
 }
 
+TEST(GearTrainTest, CommonPeriodOfTable1IsTenInputRevolutions) {
+  // Intermediate and output turn at 7/10 of the input: after 10 input revolutions (1 s at
+  // 600 r/min) they have made exactly 7.
+  const Result<std::int64_t> n = GearTrain::Table1().InputRevolutionsPerCommonPeriod();
+  ASSERT_TRUE(n.ok()) << n.error();
+  EXPECT_EQ(*n, 10);
+}
+
+TEST(GearTrainTest, CommonPeriodOfCoprimeRatiosIsTheProductOfTheDenominators) {
+  // 20 -> 30 (2/3), then 25 -> 35 (5/7): shaft speeds 1, 2/3, 10/21 -> lcm(1, 3, 21) = 21.
+  GearTrain t;
+  t.shafts = {{"in", {"A"}}, {"mid", {"B", "C"}}, {"out", {"D"}}};
+  t.gears = {{"A", 20}, {"B", 30}, {"C", 25}, {"D", 35}};
+  t.stages = {{"A", "B"}, {"C", "D"}};
+  const Result<std::int64_t> n = t.InputRevolutionsPerCommonPeriod();
+  ASSERT_TRUE(n.ok()) << n.error();
+  EXPECT_EQ(*n, 21);
+  const Result<TrainKinematics> k = t.Kinematics(21.0);
+  ASSERT_TRUE(k.ok());
+  EXPECT_NEAR(k->shafts[2].rotation_hz, 10.0, 1e-12);  // 21 * 10/21 revolutions per second
+}
+
 // Validation: each broken train is rejected with a message naming the field.
 std::string WhyInvalid(const GearTrain& t) {
   std::string why;
