@@ -8,6 +8,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = gearpath::tools::kExitOk;
   // Subcommands register here, one line each (validate lands with core/inverse's tables).
+  gearpath::tools::AddMonitorCommand(app, exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

@@ -1,0 +1,358 @@
+// `gearpath monitor`: subscribes to the daemon's result and status topics and shows them.
+//
+// On a terminal it redraws one table per machine as results arrive; otherwise (or with --json)
+// it prints one line per sample, JSON with --json, so scripts and tests can parse it. It stops by
+// itself after --count verdicts (SuspectedGear samples, one per processed block) or after
+// --timeout seconds. Result topics are transient-local, so a monitor started late still gets
+// each machine's latest results at once.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "idl/dds/domain.h"
+#include "idl/dds/gearpath_topics.h"
+#include "idl/dds/sequence.h"
+#include "idl/dds/topic.h"
+#include "idl/dds/waitset.h"
+#include "tools/commands/commands.h"
+
+namespace gearpath::tools {
+namespace {
+
+using nlohmann::json;
+using dds::GetString;
+using dds::View;
+
+struct MonitorOptions {
+  int domain_id = 0;
+  std::vector<std::string> machines;  // empty = all
+  bool json_lines = false;
+  int count = 0;           // stop after this many verdicts; 0 = never
+  double timeout_s = 0.0;  // stop after this long; 0 = never
+  bool status = true;      // also show the Status topic
+};
+
+const char* StateName(gearpath_FaultState s) {
+  switch (s) {
+    case gearpath_NO_FAULT: return "no_fault";
+    case gearpath_SUSPECTED: return "suspected";
+    case gearpath_ALARM: return "alarm";
+  }
+  return "unknown";
+}
+
+const char* DaemonStateName(gearpath_DaemonState s) {
+  switch (s) {
+    case gearpath_STARTING: return "starting";
+    case gearpath_RUNNING: return "running";
+    case gearpath_RELOADING: return "reloading";
+    case gearpath_STOPPING: return "stopping";
+    case gearpath_DEGRADED: return "degraded";
+  }
+  return "unknown";
+}
+
+const char* SpeedSourceName(gearpath_SpeedSource s) {
+  switch (s) {
+    case gearpath_SPEED_UNKNOWN: return "unknown";
+    case gearpath_SPEED_ACQUISITION_TACHOMETER: return "acquisition";
+    case gearpath_SPEED_OTHER: return "other";
+  }
+  return "unknown";
+}
+
+json ToJson(const gearpath_DominantPath& s) {
+  json paths = json::array();
+  for (const auto& p : View(s.paths)) {
+    paths.push_back({{"name", GetString(p.name)}, {"share", p.share}});
+  }
+  return {{"topic", "DominantPath"},          {"machine", GetString(s.machine_id)},
+          {"block", s.block_sequence},         {"t0_ns", s.block_t0_ns},
+          {"path_index", s.path_index},        {"path", GetString(s.path_name)},
+          {"band_hz", {s.band_lo_hz, s.band_hi_hz}}, {"paths", paths}};
+}
+
+json ToJson(const gearpath_SuspectedGear& s) {
+  json candidates = json::array();
+  for (const auto& c : View(s.candidates)) candidates.push_back(GetString(c));
+  return {{"topic", "SuspectedGear"},   {"machine", GetString(s.machine_id)},
+          {"block", s.block_sequence},   {"t0_ns", s.block_t0_ns},
+          {"state", StateName(s.state)}, {"gear", GetString(s.gear_name)},
+          {"shaft", GetString(s.shaft_name)},
+          {"characteristic_hz", s.characteristic_frequency_hz},
+          {"confidence", s.confidence},  {"candidates", candidates},
+          {"reason", GetString(s.reason)}};
+}
+
+json ToJson(const gearpath_EnvelopeIndicators& s) {
+  json shafts = json::array();
+  for (const auto& sh : View(s.shafts)) {
+    shafts.push_back({{"shaft", GetString(sh.shaft_name)},
+                      {"characteristic_hz", sh.characteristic_frequency_hz},
+                      {"raw", sh.raw_indicator},
+                      {"reconstructed", sh.reconstructed_indicator},
+                      {"enhancement_percent", sh.enhancement_percent}});
+  }
+  return {{"topic", "EnvelopeIndicators"},
+          {"machine", GetString(s.machine_id)},
+          {"block", s.block_sequence},
+          {"t0_ns", s.block_t0_ns},
+          {"band",
+           {{"centre_hz", s.band.centre_hz},
+            {"width_hz", s.band.width_hz},
+            {"level", s.band.level},
+            {"kurtosis", s.band.kurtosis},
+            {"significant", s.band.significant}}},
+          {"speed_hz", s.speed_hz},
+          {"speed_source", SpeedSourceName(s.speed_source)},
+          {"shafts", shafts}};
+}
+
+json ToJson(const gearpath_Status& s) {
+  json machines = json::array();
+  for (const auto& m : View(s.machines)) {
+    machines.push_back({{"machine", GetString(m.machine_id)},
+                        {"received", m.blocks_received},
+                        {"processed", m.blocks_processed},
+                        {"rejected", m.blocks_rejected},
+                        {"last_rejection", GetString(m.last_rejection_reason)},
+                        {"alpha", m.last_alpha},
+                        {"condition_number", m.last_condition_number},
+                        {"relative_residual", m.last_relative_residual},
+                        {"latency_ms", m.latency_last_ms},
+                        {"latency_max_ms", m.latency_max_ms}});
+  }
+  return {{"topic", "Status"},       {"daemon", GetString(s.daemon_id)},
+          {"state", DaemonStateName(s.state)}, {"uptime_s", s.uptime_s},
+          {"machines", machines}};
+}
+
+// The latest of each result topic per machine, for the terminal table.
+struct MachineView {
+  json dominant, gear, indicators;
+};
+
+std::string Fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+void DrawTable(const std::map<std::string, MachineView>& machines, const json& status) {
+  std::string out = "\x1b[H\x1b[2J";  // home + clear: redraw in place
+  out += "gearpath monitor  (Ctrl-C to stop)\n\n";
+  for (const auto& [id, v] : machines) {
+    out += "machine " + id + "\n";
+    if (!v.gear.is_null()) {
+      out += "  verdict    block " + v.gear["block"].dump() + ": " +
+             v.gear["state"].get<std::string>();
+      if (!v.gear["gear"].get<std::string>().empty()) {
+        out += "  gear " + v.gear["gear"].get<std::string>() + " on " +
+               v.gear["shaft"].get<std::string>() + " shaft at " +
+               Fixed(v.gear["characteristic_hz"].get<double>(), 2) + " Hz, confidence " +
+               Fixed(v.gear["confidence"].get<double>(), 2);
+      }
+      out += "\n  reason     " + v.gear["reason"].get<std::string>() + "\n";
+    }
+    if (!v.dominant.is_null()) {
+      out += "  dominant   " + v.dominant["path"].get<std::string>() + "   shares:";
+      for (const auto& p : v.dominant["paths"]) {
+        out += " " + p["name"].get<std::string>() + " " +
+               Fixed(100.0 * p["share"].get<double>(), 1) + "%";
+      }
+      out += "\n";
+    }
+    if (!v.indicators.is_null()) {
+      const auto& b = v.indicators["band"];
+      out += "  envelope   band " + Fixed(b["centre_hz"].get<double>(), 0) + " Hz +/- " +
+             Fixed(b["width_hz"].get<double>() / 2, 0) + " Hz, kurtosis " +
+             Fixed(b["kurtosis"].get<double>(), 2) +
+             (b["significant"].get<bool>() ? "" : " (not significant)") + "\n";
+      out += "  shaft            f [Hz]      raw    recon.  enhancement\n";
+      for (const auto& s : v.indicators["shafts"]) {
+        char line[160];
+        std::snprintf(line, sizeof line, "  %-14s %8.2f %8.3f %8.3f %10.0f %%\n",
+                      s["shaft"].get<std::string>().c_str(),
+                      s["characteristic_hz"].get<double>(), s["raw"].get<double>(),
+                      s["reconstructed"].get<double>(),
+                      s["enhancement_percent"].get<double>());
+        out += line;
+      }
+    }
+    out += "\n";
+  }
+  if (!status.is_null()) {
+    out += "daemon " + status["daemon"].get<std::string>() + ": " +
+           status["state"].get<std::string>() + ", up " +
+           Fixed(status["uptime_s"].get<double>(), 0) + " s\n";
+    for (const auto& m : status["machines"]) {
+      out += "  " + m["machine"].get<std::string>() + ": received " + m["received"].dump() +
+             ", processed " + m["processed"].dump() + ", rejected " + m["rejected"].dump();
+      if (!m["last_rejection"].get<std::string>().empty()) {
+        out += " (last: " + m["last_rejection"].get<std::string>() + ")";
+      }
+      out += ", latency " + Fixed(m["latency_ms"].get<double>(), 1) + " ms\n";
+    }
+  }
+  std::fputs(out.c_str(), stdout);
+  std::fflush(stdout);
+}
+
+// Plain one-line summary of a sample for non-terminal output without --json.
+std::string PlainLine(const json& j) {
+  const std::string topic = j["topic"];
+  if (topic == "SuspectedGear") {
+    return "verdict   " + j["machine"].get<std::string>() + " block " + j["block"].dump() +
+           ": " + j["state"].get<std::string>() + " " + j["gear"].get<std::string>() +
+           " (" + j["shaft"].get<std::string>() + ", " +
+           Fixed(j["characteristic_hz"].get<double>(), 2) + " Hz, confidence " +
+           Fixed(j["confidence"].get<double>(), 2) + ") " + j["reason"].get<std::string>();
+  }
+  if (topic == "DominantPath") {
+    return "dominant  " + j["machine"].get<std::string>() + " block " + j["block"].dump() +
+           ": " + j["path"].get<std::string>();
+  }
+  if (topic == "EnvelopeIndicators") {
+    std::string s = "envelope  " + j["machine"].get<std::string>() + " block " +
+                    j["block"].dump() + ":";
+    for (const auto& sh : j["shafts"]) {
+      s += " " + sh["shaft"].get<std::string>() + " raw " + Fixed(sh["raw"].get<double>(), 3) +
+           " recon " + Fixed(sh["reconstructed"].get<double>(), 3) + " (" +
+           Fixed(sh["enhancement_percent"].get<double>(), 0) + " %)";
+    }
+    return s;
+  }
+  return "status    " + j.dump();
+}
+
+template <typename T>
+struct Subscription {
+  Subscription(const dds::Participant& participant, dds::WaitSet& waitset, dds_attach_t token)
+      : topic(participant), reader(topic), condition(reader), samples(16), infos(16) {
+    waitset.Attach(condition, token);
+  }
+  dds::Topic<T> topic;
+  dds::Reader<T> reader;
+  dds::ReadCondition condition;
+  std::vector<dds::Owned<T>> samples;
+  std::vector<dds::SampleInfo> infos;
+};
+
+int RunMonitor(const MonitorOptions& opt) {
+  const std::set<std::string> wanted(opt.machines.begin(), opt.machines.end());
+  const bool terminal = !opt.json_lines && isatty(STDOUT_FILENO);
+
+  dds::Domain domain(opt.domain_id);
+  dds::Participant participant(domain);
+  dds::WaitSet waitset(participant);
+  Subscription<gearpath_DominantPath> dominant(participant, waitset, 1);
+  Subscription<gearpath_SuspectedGear> gear(participant, waitset, 2);
+  Subscription<gearpath_EnvelopeIndicators> indicators(participant, waitset, 3);
+  Subscription<gearpath_Status> status(participant, waitset, 4);
+
+  std::map<std::string, MachineView> table;
+  json last_status;
+  int verdicts = 0;
+  const auto start = std::chrono::steady_clock::now();
+
+  auto emit = [&](json j, const std::string& machine, json MachineView::*slot) {
+    if (!wanted.empty() && !machine.empty() && !wanted.count(machine)) return;
+    if (terminal) {
+      if (slot != nullptr) table[machine].*slot = std::move(j);
+      else last_status = std::move(j);
+      DrawTable(table, last_status);
+    } else {
+      std::puts(opt.json_lines ? j.dump().c_str() : PlainLine(j).c_str());
+      std::fflush(stdout);
+    }
+  };
+  auto drain = [&](auto& sub, auto on_sample) -> bool {
+    auto taken = sub.reader.Take(sub.samples, sub.infos);
+    if (!taken) {
+      std::fprintf(stderr, "gearpath monitor: %s\n", taken.error().c_str());
+      return false;
+    }
+    for (std::size_t i = 0; i < *taken; ++i) {
+      if (sub.infos[i].valid_data) on_sample(*sub.samples[i]);
+    }
+    return true;
+  };
+
+  std::vector<dds_attach_t> triggered(8);
+  for (;;) {
+    std::chrono::nanoseconds wait = std::chrono::milliseconds(500);
+    if (opt.timeout_s > 0) {
+      const auto left = start + std::chrono::duration<double>(opt.timeout_s) -
+                        std::chrono::steady_clock::now();
+      if (left <= std::chrono::nanoseconds::zero()) {
+        if (opt.count > 0) {
+          std::fprintf(stderr, "gearpath monitor: timed out after %.1f s with %d of %d verdicts\n",
+                       opt.timeout_s, verdicts, opt.count);
+          return kExitFailure;
+        }
+        return kExitOk;
+      }
+      wait = std::min(wait, std::chrono::duration_cast<std::chrono::nanoseconds>(left));
+    }
+    auto woke = waitset.Wait(triggered, wait);
+    if (!woke) {
+      std::fprintf(stderr, "gearpath monitor: %s\n", woke.error().c_str());
+      return kExitFailure;
+    }
+    bool ok = drain(dominant, [&](const auto& s) {
+      emit(ToJson(s), std::string(GetString(s.machine_id)), &MachineView::dominant);
+    });
+    ok = ok && drain(indicators, [&](const auto& s) {
+      emit(ToJson(s), std::string(GetString(s.machine_id)), &MachineView::indicators);
+    });
+    ok = ok && drain(gear, [&](const auto& s) {
+      const std::string machine(GetString(s.machine_id));
+      if (!wanted.empty() && !wanted.count(machine)) return;
+      emit(ToJson(s), machine, &MachineView::gear);
+      ++verdicts;
+    });
+    ok = ok && drain(status, [&](const auto& s) {
+      if (opt.status) emit(ToJson(s), "", nullptr);
+    });
+    if (!ok) return kExitFailure;
+    if (opt.count > 0 && verdicts >= opt.count) return kExitOk;
+  }
+}
+
+}  // namespace
+
+void AddMonitorCommand(CLI::App& app, int& exit_code) {
+  auto opt = std::make_shared<MonitorOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "monitor", "Show the daemon's fault topics (dominant path, suspected gear, envelope "
+                 "indicators) and its status, live; loopback DDS unless CYCLONEDDS_URI says "
+                 "otherwise");
+  cmd->add_option("--domain", opt->domain_id, "DDS domain id")->capture_default_str()
+      ->check(CLI::Range(0, 232));
+  cmd->add_option("--machine", opt->machines, "Only these machine ids (repeatable)");
+  cmd->add_flag("--json", opt->json_lines, "One JSON object per line (for scripts)");
+  cmd->add_option("--count", opt->count,
+                  "Stop after this many verdicts (SuspectedGear samples); 0 = never")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--timeout", opt->timeout_s,
+                  "Stop after this many seconds; with --count, exit 1 if it was not reached")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("!--no-status", opt->status, "Do not show the Status topic");
+  cmd->callback([opt, &exit_code] {
+    try {
+      exit_code = RunMonitor(*opt);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "gearpath monitor: %s\n", e.what());
+      exit_code = kExitFailure;
+    }
+  });
+}
+
+}  // namespace gearpath::tools
