@@ -37,6 +37,16 @@ TEST(BlockStream, DeliversEveryBlockInOrderToAReaderThatStartsTakingLate) {
   waitset.Attach(stop, 2);
   ASSERT_TRUE(writer.WaitForReaders(1, seconds(10)));
 
+  // Whatever happens below (an ASSERT returning early included), stop and join the consumer.
+  struct StopAndJoin {
+    GuardCondition& stop;
+    std::thread& thread;
+    ~StopAndJoin() {
+      (void)stop.Trigger();
+      if (thread.joinable()) thread.join();
+    }
+  };
+
   std::promise<void> writer_done;
   std::vector<std::uint64_t> sequences;
   std::vector<bool> payload_ok;
@@ -66,6 +76,7 @@ TEST(BlockStream, DeliversEveryBlockInOrderToAReaderThatStartsTakingLate) {
       }
     }
   });
+  StopAndJoin stop_and_join{stop, consumer};
 
   Owned<gearpath_AccelBlock> block;
   ASSERT_TRUE(SetString(block->machine_id, "gearbox-1"));
@@ -82,7 +93,7 @@ TEST(BlockStream, DeliversEveryBlockInOrderToAReaderThatStartsTakingLate) {
     // Flow control makes Write wait while the reader's history is full; a write that times
     // out (max_blocking_time 1 s) is retried, as an acquisition bridge would.
     Status status = writer.Write(*block);
-    for (int retry = 0; !status && retry < 20; ++retry) {
+    for (int retry = 0; !status && retry < 10; ++retry) {
       if (first_failure.empty()) first_failure = status.error();
       ++failed_writes;
       status = writer.Write(*block);
@@ -90,7 +101,7 @@ TEST(BlockStream, DeliversEveryBlockInOrderToAReaderThatStartsTakingLate) {
     ASSERT_TRUE(status) << status.error();
   }
   writer_done.set_value();
-  consumer.join();
+  consumer.join();  // it returns once all blocks are in, or after its 30 s deadline
 
   ASSERT_EQ(sequences.size(), kBlocks) << "first write failure: " << first_failure;
   for (std::uint64_t k = 0; k < kBlocks; ++k) {

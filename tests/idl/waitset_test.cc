@@ -40,8 +40,12 @@ TEST(WaitSet, GuardConditionWakesAWorkerWaitingForDataSoItsThreadJoins) {
   waiting.get_future().wait();
   ASSERT_TRUE(shutdown.Trigger());
 
-  ASSERT_EQ(woke_by.wait_for(seconds(10)), std::future_status::ready)
-      << "the worker did not wake on the guard condition";
+  if (woke_by.wait_for(seconds(10)) != std::future_status::ready) {
+    // Release the worker so the test fails now instead of hanging in ~future: deleting the
+    // waitset ends its wait with an error.
+    (void)dds_delete(waitset.handle());
+    FAIL() << "the worker did not wake on the guard condition";
+  }
   EXPECT_EQ(woke_by.get(), kShutdownToken);
   Result<bool> was_triggered = shutdown.TakeTriggered();
   ASSERT_TRUE(was_triggered) << was_triggered.error();
