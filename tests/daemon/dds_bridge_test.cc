@@ -1,0 +1,186 @@
+// The DDS bridge: wire samples <-> core types, field by field (no DDS traffic needed).
+#include "daemon/dds_bridge.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "idl/dds/gearpath_topics.h"
+
+namespace gearpath::daemon {
+namespace {
+
+using dds::GetString;
+using dds::Owned;
+using dds::View;
+
+TEST(DdsBridge, ViewOfAnAccelBlockSharesTheSampleBufferAndCopiesTheChannelNames) {
+  Owned<gearpath_AccelBlock> s;
+  ASSERT_TRUE(dds::SetString(s->machine_id, "gb7"));
+  s->sequence_number = 42;
+  s->t0_ns = 123456789;
+  s->sample_rate_hz = 8000.0;
+  s->speed_hz = 10.0;
+  s->speed_source = gearpath_SPEED_ACQUISITION_TACHOMETER;
+  ASSERT_TRUE(dds::Resize(s->channels, 2));
+  ASSERT_TRUE(dds::SetString(s->channels._buffer[0].sensor_id, "A4"));
+  s->channels._buffer[0].axis = gearpath_AXIS_X;
+  ASSERT_TRUE(dds::SetString(s->channels._buffer[1].sensor_id, "A5"));
+  s->channels._buffer[1].axis = gearpath_AXIS_Z;
+  s->samples_per_channel = 3;
+  const float values[] = {1, 2, 3, 4, 5, 6};
+  ASSERT_TRUE(dds::Assign(s->samples, std::span<const float>(values)));
+
+  std::vector<ChannelInfo> channels;
+  const AccelBlockView v = ViewOf(*s, channels);
+  EXPECT_EQ(v.machine_id, "gb7");
+  EXPECT_EQ(v.sequence, 42u);
+  EXPECT_EQ(v.t0_ns, 123456789);
+  EXPECT_EQ(v.sample_rate_hz, 8000.0);
+  EXPECT_EQ(v.speed_hz, 10.0);
+  EXPECT_EQ(v.speed_source, SpeedSource::kAcquisition);
+  ASSERT_EQ(v.channels.size(), 2u);
+  EXPECT_EQ(v.channels[0].sensor, "A4");
+  EXPECT_EQ(v.channels[1].axis, Axis::kZ);
+  EXPECT_EQ(v.samples.data(), s->samples._buffer);  // no copy of the samples
+  EXPECT_EQ(v.channel(1)[0], 4.0f);
+}
+
+TEST(DdsBridge, AnAccelBlockWithoutSpeedSourceHasAnUnknownSpeed) {
+  Owned<gearpath_AccelBlock> s;
+  s->speed_source = gearpath_SPEED_UNKNOWN;
+  std::vector<ChannelInfo> channels;
+  EXPECT_EQ(ViewOf(*s, channels).speed_source, SpeedSource::kUnknown);
+  EXPECT_TRUE(ViewOf(*s, channels).samples.empty());
+}
+
+BlockResult ExampleResult() {
+  BlockResult r;
+  r.sequence = 9;
+  r.t0_ns = 77;
+  r.speed_hz = 10.0;
+  r.speed_source = SpeedSource::kConfiguration;
+  r.dominant_path = 1;
+  r.dominant_path_name = "B2x";
+  r.criterion = AnalysisOptions::DominantCriterion::kBandEnergy;
+  r.analysis_band_lo_hz = 5.0;
+  r.analysis_band_hi_hz = 3000.0;
+  r.paths = {{"B1x", "", 1.0, 0.25, 0.0}, {"B2x", "", 3.0, 0.75, 0.0}};
+  r.reconstructed_band = {1200.0, 250.0, 4, 3.5, true};
+  BlockShaftIndicator shaft;
+  shaft.shaft = "input";
+  shaft.characteristic_hz = 10.0;
+  shaft.raw = 1.0;
+  shaft.reconstructed = 3.0;
+  shaft.enhancement_percent = 300.0;
+  shaft.raw_harmonics = {0.5, 0.2, 0.1, 0.1, 0.1};
+  shaft.reconstructed_harmonics = {1.5, 0.6, 0.3, 0.3, 0.3};
+  r.shafts = {shaft};
+  r.verdict.state = FaultState::kSuspected;
+  r.verdict.gear_name = "G3";
+  r.verdict.shaft_name = "intermediate";
+  r.verdict.characteristic_hz = 7.0;
+  r.verdict.confidence = 0.8;
+  r.verdict.candidate_names = {"G3", "G4"};
+  r.verdict.reason.Assign("intermediate shaft harmonics; G3 and G4 share rate and mesh");
+  return r;
+}
+
+TEST(DdsBridge, DominantPathCarriesEverySharesAndTheBand) {
+  const BlockResult r = ExampleResult();
+  Owned<gearpath_DominantPath> out;
+  FillDominantPath("gb7", r, *out);
+  EXPECT_EQ(GetString(out->machine_id), "gb7");
+  EXPECT_EQ(out->block_sequence, 9u);
+  EXPECT_EQ(out->block_t0_ns, 77);
+  EXPECT_EQ(out->path_index, 1u);
+  EXPECT_EQ(GetString(out->path_name), "B2x");
+  ASSERT_EQ(out->paths._length, 2u);
+  EXPECT_EQ(GetString(out->paths._buffer[0].name), "B1x");
+  EXPECT_DOUBLE_EQ(out->paths._buffer[0].share + out->paths._buffer[1].share, 1.0);
+  EXPECT_EQ(out->band_hi_hz, 3000.0);
+  EXPECT_EQ(out->criterion, gearpath_CRITERION_BAND_ENERGY);
+}
+
+TEST(DdsBridge, SuspectedGearNamesTheGearAndItsIndistinguishableCandidates) {
+  const BlockResult r = ExampleResult();
+  Owned<gearpath_SuspectedGear> out;
+  FillSuspectedGear("gb7", r, *out);
+  EXPECT_EQ(out->state, gearpath_SUSPECTED);
+  EXPECT_EQ(GetString(out->gear_name), "G3");
+  EXPECT_EQ(GetString(out->shaft_name), "intermediate");
+  EXPECT_EQ(out->characteristic_frequency_hz, 7.0);
+  ASSERT_EQ(out->candidates._length, 2u);
+  EXPECT_EQ(GetString(out->candidates._buffer[1]), "G4");
+  EXPECT_EQ(GetString(out->reason), r.verdict.reason.view());
+}
+
+TEST(DdsBridge, NoFaultAndLearningNameNoGear) {
+  BlockResult r = ExampleResult();
+  for (FaultState state : {FaultState::kNoFault, FaultState::kLearning}) {
+    r.verdict.state = state;
+    Owned<gearpath_SuspectedGear> out;
+    FillSuspectedGear("gb7", r, *out);
+    EXPECT_EQ(out->state, gearpath_NO_FAULT);
+    EXPECT_EQ(GetString(out->gear_name), "");
+    EXPECT_EQ(out->candidates._length, 0u);
+  }
+}
+
+TEST(DdsBridge, EnvelopeIndicatorsCarryTheReconstructedBandAndEveryHarmonic) {
+  const BlockResult r = ExampleResult();
+  Owned<gearpath_EnvelopeIndicators> out;
+  FillEnvelopeIndicators("gb7", r, *out);
+  EXPECT_EQ(out->band.centre_hz, 1200.0);
+  EXPECT_EQ(out->band.level, 4.0);
+  EXPECT_TRUE(out->band.significant);
+  ASSERT_EQ(out->shafts._length, 1u);
+  const gearpath_ShaftIndicator& s = out->shafts._buffer[0];
+  EXPECT_EQ(GetString(s.shaft_name), "input");
+  EXPECT_EQ(s.enhancement_percent, 300.0);
+  double sum = 0.0;
+  for (double h : s.reconstructed_harmonics) sum += h;
+  EXPECT_DOUBLE_EQ(sum, s.reconstructed_indicator);  // the indicator is the harmonics' sum
+  EXPECT_EQ(out->speed_source, gearpath_SPEED_OTHER);
+}
+
+TEST(DdsBridge, ResultSamplesAreReusedWhenTheNextResultIsSmaller) {
+  BlockResult r = ExampleResult();
+  Owned<gearpath_DominantPath> out;
+  FillDominantPath("gb7", r, *out);
+  const auto* buffer = out->paths._buffer;
+  r.paths.pop_back();
+  FillDominantPath("gb7", r, *out);
+  EXPECT_EQ(out->paths._length, 1u);
+  EXPECT_EQ(out->paths._buffer, buffer);
+}
+
+TEST(DdsBridge, StatusListsEveryConfiguredMachineWithItsCountersAndLastRejection) {
+  std::map<std::string, MachineCounters, std::less<>> counters;
+  counters["gb1"].received = 5;
+  counters["gb1"].processed = 3;
+  counters["gb1"].rejected = 2;
+  counters["gb1"].last_rejection = "non_finite: sample 17 of channel 0 is NaN";
+  const std::vector<std::string> ids{"gb1", "gb2"};
+  Owned<gearpath_Status> out;
+  FillStatus({"d1", gearpath_RUNNING, 5, 1.5}, ids, counters, *out);
+  EXPECT_EQ(GetString(out->daemon_id), "d1");
+  EXPECT_EQ(out->uptime_s, 1.5);
+  ASSERT_EQ(out->machines._length, 2u);
+  EXPECT_EQ(out->machines._buffer[0].blocks_received, 5u);
+  EXPECT_EQ(out->machines._buffer[0].blocks_processed + out->machines._buffer[0].blocks_rejected,
+            5u);
+  EXPECT_EQ(GetString(out->machines._buffer[0].last_rejection_reason),
+            "non_finite: sample 17 of channel 0 is NaN");
+  EXPECT_EQ(GetString(out->machines._buffer[1].machine_id), "gb2");
+  EXPECT_EQ(out->machines._buffer[1].blocks_received, 0u);
+}
+
+TEST(DdsBridge, AnOverlongTextIsTruncatedToTheIdlBound) {
+  char id[gearpath_ID_LENGTH + 1];
+  CopyTruncated(id, std::string(100, 'x'));
+  EXPECT_EQ(std::string(id).size(), std::size_t{gearpath_ID_LENGTH});
+}
+
+}  // namespace
+}  // namespace gearpath::daemon

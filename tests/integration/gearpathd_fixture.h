@@ -1,0 +1,253 @@
+// Integration fixture: gearpathd as a child process on a private loopback DDS domain, and the
+// test as acquisition bridge (AccelBlock writer) and plant (result and Status readers).
+//
+// Each test gets its own domain id (from its pid) and its own machine and daemon ids, so tests
+// running in parallel never see each other's traffic. Every wait has a deadline; ctest's
+// TIMEOUT is the outer watchdog. The daemon runs the test configuration: the embedded default
+// (builtin:table1) with a fast status period and a short baseline.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/common/accel_block.h"
+#include "daemon/daemon_config.h"
+#include "daemon/machine_setup_builder.h"
+#include "idl/dds/gearpath_topics.h"
+#include "tests/daemon/child_process.h"
+
+namespace gearpath::testing {
+
+using namespace std::chrono_literals;
+using nlohmann::json;
+
+// Copies a core block into a wire sample (test side: the acquisition bridge's job).
+inline bool ToWire(const AccelBlock& b, dds::Owned<gearpath_AccelBlock>& s) {
+  if (!dds::SetString(s->machine_id, b.machine_id)) return false;
+  s->sequence_number = b.sequence;
+  s->t0_ns = b.t0_ns;
+  s->sample_rate_hz = b.sample_rate_hz;
+  s->speed_hz = b.speed_hz;
+  s->speed_source = b.speed_source == SpeedSource::kUnknown ? gearpath_SPEED_UNKNOWN
+                                                            : gearpath_SPEED_ACQUISITION_TACHOMETER;
+  if (!dds::Resize(s->channels, static_cast<std::uint32_t>(b.channels.size()))) return false;
+  for (std::size_t c = 0; c < b.channels.size(); ++c) {
+    auto& w = s->channels._buffer[c];
+    if (!dds::SetString(w.sensor_id, b.channels[c].sensor)) return false;
+    w.axis = b.channels[c].axis == Axis::kX   ? gearpath_AXIS_X
+             : b.channels[c].axis == Axis::kY ? gearpath_AXIS_Y
+                                              : gearpath_AXIS_Z;
+    (void)dds::SetString(w.unit, b.channels[c].unit);
+    w.sensitivity_mv_per_unit = b.channels[c].sensitivity;
+  }
+  s->samples_per_channel = b.samples_per_channel;
+  return dds::Assign(s->samples, std::span<const float>(b.samples));
+}
+
+inline Axis AxisOf(const std::string& name) {
+  return name == "y" ? Axis::kY : name == "z" ? Axis::kZ : Axis::kX;
+}
+
+class GearpathdOverDds : public ::testing::Test {
+ protected:
+  static constexpr double kSampleRate = 8000.0;
+  static constexpr std::uint32_t kBlockLength = 8192;
+
+  // Adjusts the test configuration before the daemon starts.
+  virtual void Configure(json& config) { (void)config; }
+
+  void SetUp() override {
+    const int pid = static_cast<int>(getpid());
+    domain_id_ = 100 + pid % 120;
+    suffix_ = std::to_string(pid);
+    machine_id_ = "gb_" + suffix_;
+    daemon_id_ = "gearpathd_" + suffix_;
+    dir_ = std::filesystem::temp_directory_path() /
+           ("gearpathd_it_" + suffix_ + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+    config_path_ = (dir_ / "gearpathd.json").string();
+
+    config_ = json::parse(daemon::DefaultConfigText());
+    config_["daemon"]["id"] = daemon_id_;
+    config_["daemon"]["status_period_s"] = 0.1;
+    config_["daemon"]["throughput_log_period_s"] = 1.0;
+    config_["daemon"]["log_level"] = "debug";
+    config_["dds"]["domain_id"] = domain_id_;
+    config_["machines"][0]["id"] = machine_id_;
+    config_["machines"][0]["acquisition"]["max_samples_per_channel"] = kBlockLength;
+    config_["machines"][0]["analysis"]["baseline"]["learning_blocks"] = 4;
+    Configure(config_);
+    WriteConfig(config_);
+
+    // The channel layout the daemon expects: the built-in set's response channels.
+    auto set = daemon::BuiltinFrfSet("table1");
+    ASSERT_TRUE(set.ok()) << set.error();
+    for (const auto& ch : set->channels) {
+      channels_.push_back({ch.sensor, AxisOf(ch.axis), "m/s^2", 0.0});
+    }
+
+    domain_ = std::make_unique<dds::Domain>(domain_id_, dds::kLoopbackConfigXml,
+                                            dds::EnvironmentConfig::kIgnore);
+    participant_ = std::make_unique<dds::Participant>(*domain_);
+    block_topic_ = std::make_unique<dds::Topic<gearpath_AccelBlock>>(*participant_);
+    block_writer_ = std::make_unique<dds::Writer<gearpath_AccelBlock>>(*block_topic_);
+    status_topic_ = std::make_unique<dds::Topic<gearpath_Status>>(*participant_);
+    status_reader_ = std::make_unique<dds::Reader<gearpath_Status>>(*status_topic_);
+    dominant_topic_ = std::make_unique<dds::Topic<gearpath_DominantPath>>(*participant_);
+    dominant_reader_ = std::make_unique<dds::Reader<gearpath_DominantPath>>(*dominant_topic_);
+    gear_topic_ = std::make_unique<dds::Topic<gearpath_SuspectedGear>>(*participant_);
+    gear_reader_ = std::make_unique<dds::Reader<gearpath_SuspectedGear>>(*gear_topic_);
+    indicators_topic_ = std::make_unique<dds::Topic<gearpath_EnvelopeIndicators>>(*participant_);
+    indicators_reader_ =
+        std::make_unique<dds::Reader<gearpath_EnvelopeIndicators>>(*indicators_topic_);
+
+    daemon_ = std::make_unique<ChildProcess>(
+        GEARPATHD_PATH, std::vector<std::string>{"--config", config_path_},
+        (dir_ / "gearpathd.log").string());
+    ASSERT_TRUE(daemon_->started());
+    // Ready = its Status arrives and it has discovered our block writer.
+    ASSERT_TRUE(WaitStatus([](const gearpath_MachineStatus&) { return true; }, 90s))
+        << "gearpathd did not publish Status; its log:\n"
+        << daemon_->Log();
+    ASSERT_TRUE(block_writer_->WaitForReaders(1, 30s).ok()) << daemon_->Log();
+  }
+
+  void TearDown() override {
+    if (daemon_ && daemon_->running()) {
+      daemon_->Signal(SIGTERM);
+      (void)daemon_->WaitExit(5s);
+    }
+    if (HasFailure() && daemon_) std::cerr << "gearpathd log:\n" << daemon_->Log() << "\n";
+    daemon_.reset();
+    indicators_reader_.reset();
+    indicators_topic_.reset();
+    gear_reader_.reset();
+    gear_topic_.reset();
+    dominant_reader_.reset();
+    dominant_topic_.reset();
+    status_reader_.reset();
+    status_topic_.reset();
+    block_writer_.reset();
+    block_topic_.reset();
+    participant_.reset();
+    domain_.reset();
+    std::filesystem::remove_all(dir_);
+  }
+
+  void WriteConfig(const json& config) { std::ofstream(config_path_) << config.dump(2); }
+
+  // A healthy-looking block: independent Gaussian noise on every expected channel.
+  AccelBlock NoiseBlock(std::uint64_t sequence) {
+    AccelBlock b;
+    b.machine_id = machine_id_;
+    b.sequence = sequence;
+    b.t0_ns = static_cast<std::int64_t>(sequence) * 1'000'000'000;
+    b.sample_rate_hz = kSampleRate;
+    b.speed_hz = 10.0;
+    b.speed_source = SpeedSource::kAcquisition;
+    b.channels = channels_;
+    b.samples_per_channel = kBlockLength;
+    std::normal_distribution<float> noise(0.0f, 1.0f);
+    b.samples.resize(channels_.size() * kBlockLength);
+    for (float& x : b.samples) x = noise(rng_);
+    return b;
+  }
+
+  void Publish(const AccelBlock& block) {
+    dds::Owned<gearpath_AccelBlock> sample;
+    ASSERT_TRUE(ToWire(block, sample));
+    Status st = block_writer_->Write(*sample);
+    ASSERT_TRUE(st.ok()) << st.error();
+  }
+
+  // Waits for a Status of our daemon whose entry for our machine satisfies `pred`; also keeps
+  // the last one seen (last_status_, last_state_).
+  bool WaitStatus(const std::function<bool(const gearpath_MachineStatus&)>& pred,
+                  std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    std::vector<dds::Owned<gearpath_Status>> samples(8);
+    std::vector<dds::SampleInfo> infos(8);
+    while (std::chrono::steady_clock::now() < deadline) {
+      auto n = status_reader_->Take(samples, infos);
+      if (!n) return false;
+      for (std::size_t i = 0; i < *n; ++i) {
+        if (!infos[i].valid_data) continue;
+        const gearpath_Status& s = *samples[i];
+        if (dds::GetString(s.daemon_id) != daemon_id_) continue;
+        last_state_ = s.state;
+        for (const auto& m : dds::View(s.machines)) {
+          if (dds::GetString(m.machine_id) != machine_id_) continue;
+          last_status_ = m;
+          if (pred(m)) return true;
+        }
+      }
+      std::this_thread::sleep_for(20ms);
+    }
+    return false;
+  }
+
+  // Waits for a sample of `reader` for our machine that satisfies `pred`.
+  template <typename T>
+  std::optional<dds::Owned<T>> WaitResult(dds::Reader<T>& reader,
+                                          const std::function<bool(const T&)>& pred,
+                                          std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    std::vector<dds::Owned<T>> samples(8);
+    std::vector<dds::SampleInfo> infos(8);
+    while (std::chrono::steady_clock::now() < deadline) {
+      auto n = reader.Take(samples, infos);
+      if (!n) return std::nullopt;
+      for (std::size_t i = 0; i < *n; ++i) {
+        if (infos[i].valid_data && dds::GetString(samples[i]->machine_id) == machine_id_ &&
+            pred(*samples[i])) {
+          return std::move(samples[i]);
+        }
+      }
+      std::this_thread::sleep_for(20ms);
+    }
+    return std::nullopt;
+  }
+
+  int domain_id_ = 0;
+  std::string suffix_;
+  std::string machine_id_;
+  std::string daemon_id_;
+  std::filesystem::path dir_;
+  std::string config_path_;
+  json config_;
+  std::vector<ChannelInfo> channels_;
+  std::mt19937 rng_{12345};
+  gearpath_MachineStatus last_status_{};
+  int last_state_ = -1;
+
+  std::unique_ptr<dds::Domain> domain_;
+  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<dds::Topic<gearpath_AccelBlock>> block_topic_;
+  std::unique_ptr<dds::Writer<gearpath_AccelBlock>> block_writer_;
+  std::unique_ptr<dds::Topic<gearpath_Status>> status_topic_;
+  std::unique_ptr<dds::Reader<gearpath_Status>> status_reader_;
+  std::unique_ptr<dds::Topic<gearpath_DominantPath>> dominant_topic_;
+  std::unique_ptr<dds::Reader<gearpath_DominantPath>> dominant_reader_;
+  std::unique_ptr<dds::Topic<gearpath_SuspectedGear>> gear_topic_;
+  std::unique_ptr<dds::Reader<gearpath_SuspectedGear>> gear_reader_;
+  std::unique_ptr<dds::Topic<gearpath_EnvelopeIndicators>> indicators_topic_;
+  std::unique_ptr<dds::Reader<gearpath_EnvelopeIndicators>> indicators_reader_;
+  std::unique_ptr<ChildProcess> daemon_;
+};
+
+}  // namespace gearpath::testing
