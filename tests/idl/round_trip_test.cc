@@ -120,6 +120,48 @@ TEST(RoundTrip, AccelBlockWithEightChannelsOf4096SamplesArrivesBitExact) {
             0);
 }
 
+// Take deserialises into the caller's samples and reuses their sequence buffers, so a reader
+// that takes into the same vector block after block stops allocating for samples.
+TEST(RoundTrip, TakingIntoTheSameSampleAgainReusesItsSampleBuffer) {
+  testing::LoopbackPair pair;
+  Topic<gearpath_AccelBlock> pub_topic(pair.publisher);
+  Topic<gearpath_AccelBlock> sub_topic(pair.subscriber);
+  Writer<gearpath_AccelBlock> writer(pub_topic);
+  Reader<gearpath_AccelBlock> reader(sub_topic);
+  ReadCondition data(reader);
+  WaitSet waitset(pair.subscriber);
+  waitset.Attach(data, 1);
+  ASSERT_TRUE(writer.WaitForReaders(1, seconds(10)));
+
+  std::vector<Owned<gearpath_AccelBlock>> received(1);
+  std::vector<SampleInfo> infos(1);
+  auto take_one = [&]() -> std::size_t {
+    const auto deadline = std::chrono::steady_clock::now() + seconds(10);
+    while (std::chrono::steady_clock::now() < deadline) {
+      std::array<dds_attach_t, 1> triggered{};
+      if (!waitset.Wait(triggered, seconds(1))) return 0;
+      Result<std::size_t> n = reader.Take(received, infos);
+      if (!n) return 0;
+      if (*n > 0) return *n;
+    }
+    return 0;
+  };
+
+  Owned<gearpath_AccelBlock> sent;
+  FillBlock(*sent);
+  ASSERT_TRUE(writer.Write(*sent));
+  ASSERT_EQ(take_one(), 1U);
+  const float* const buffer = received[0]->samples._buffer;
+
+  sent->sequence_number += 1;
+  MutableView(sent->samples)[5] = 42.0F;
+  ASSERT_TRUE(writer.Write(*sent));
+  ASSERT_EQ(take_one(), 1U);
+  EXPECT_EQ(received[0]->samples._buffer, buffer);
+  EXPECT_EQ(received[0]->sequence_number, sent->sequence_number);
+  EXPECT_EQ(View(received[0]->samples)[5], 42.0F);
+}
+
 TEST(RoundTrip, WritingMoreChannelsThanTheIdlBoundFailsNamingDdsWrite) {
   testing::LoopbackPair pair;
   Topic<gearpath_AccelBlock> topic(pair.publisher);
