@@ -1,0 +1,82 @@
+#include "idl/dds/accel_block_wire.h"
+
+#include <string>
+
+#include "idl/dds/sequence.h"
+
+namespace gearpath::dds {
+namespace {
+
+gearpath_Axis WireAxis(Axis axis) {
+  switch (axis) {
+    case Axis::kY: return gearpath_AXIS_Y;
+    case Axis::kZ: return gearpath_AXIS_Z;
+    case Axis::kX: break;
+  }
+  return gearpath_AXIS_X;
+}
+
+// Configuration and estimates are not something an acquisition supplies; a publisher that
+// knows the speed from elsewhere says SPEED_OTHER.
+gearpath_SpeedSource WireSpeedSource(SpeedSource source) {
+  switch (source) {
+    case SpeedSource::kAcquisition: return gearpath_SPEED_ACQUISITION_TACHOMETER;
+    case SpeedSource::kConfiguration:
+    case SpeedSource::kEstimated: return gearpath_SPEED_OTHER;
+    case SpeedSource::kUnknown: break;
+  }
+  return gearpath_SPEED_UNKNOWN;
+}
+
+}  // namespace
+
+Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noexcept {
+  if (!SetString(out.machine_id, block.machine_id)) {
+    return Error{"machine_id '" + std::string(block.machine_id) + "' is longer than " +
+                 std::to_string(gearpath_ID_LENGTH) + " characters"};
+  }
+  if (block.channels.size() > gearpath_MAX_CHANNELS) {
+    return Error{std::to_string(block.channels.size()) + " channels exceed the IDL bound of " +
+                 std::to_string(gearpath_MAX_CHANNELS)};
+  }
+  if (block.samples_per_channel > gearpath_MAX_SAMPLES_PER_CHANNEL) {
+    return Error{"samples_per_channel " + std::to_string(block.samples_per_channel) +
+                 " exceeds the IDL bound of " + std::to_string(gearpath_MAX_SAMPLES_PER_CHANNEL)};
+  }
+  if (block.samples.size() != block.channels.size() * block.samples_per_channel) {
+    return Error{"samples holds " + std::to_string(block.samples.size()) + " values, expected " +
+                 std::to_string(block.channels.size()) + " channels x " +
+                 std::to_string(block.samples_per_channel)};
+  }
+  if (block.samples.size() > gearpath_MAX_BLOCK_SAMPLES) {
+    return Error{std::to_string(block.samples.size()) + " samples exceed the IDL bound of " +
+                 std::to_string(gearpath_MAX_BLOCK_SAMPLES)};
+  }
+  out.sequence_number = block.sequence;
+  out.t0_ns = block.t0_ns;
+  out.sample_rate_hz = block.sample_rate_hz;
+  out.speed_hz = block.speed_hz;
+  out.speed_source = WireSpeedSource(block.speed_source);
+  out.samples_per_channel = block.samples_per_channel;
+  if (!Resize(out.channels, static_cast<std::uint32_t>(block.channels.size()))) {
+    return Error{"out of memory for the channel descriptions"};
+  }
+  auto wire_channels = MutableView(out.channels);
+  for (std::size_t c = 0; c < block.channels.size(); ++c) {
+    const ChannelInfo& in = block.channels[c];
+    if (!SetString(wire_channels[c].sensor_id, in.sensor)) {
+      return Error{"channels[" + std::to_string(c) + "].sensor '" + in.sensor +
+                   "' does not fit the IDL bound"};
+    }
+    if (!SetString(wire_channels[c].unit, in.unit)) {
+      return Error{"channels[" + std::to_string(c) + "].unit '" + in.unit +
+                   "' does not fit the IDL bound"};
+    }
+    wire_channels[c].axis = WireAxis(in.axis);
+    wire_channels[c].sensitivity_mv_per_unit = in.sensitivity;
+  }
+  if (!Assign(out.samples, block.samples)) return Error{"out of memory for the samples"};
+  return Status::Ok();
+}
+
+}  // namespace gearpath::dds

@@ -1,0 +1,17 @@
+// Filling the wire AccelBlock (idl/gearpath.idl) from core's AccelBlockView, for publishers
+// (the simulator, replay). Status and errors name the field that does not fit the IDL bounds,
+// so a publisher refuses a block the daemon could never receive instead of truncating it.
+#pragma once
+
+#include "core/common/accel_block.h"
+#include "core/common/result.h"
+#include "idl/gearpath.h"
+
+namespace gearpath::dds {
+
+// Copies `block` into `out`, reusing out's sequence buffers (no allocation once they have
+// grown). Fails, leaving `out` unspecified, when an id, unit or sequence exceeds its IDL bound
+// or the samples do not match channels x samples_per_channel.
+Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noexcept;
+
+}  // namespace gearpath::dds

@@ -1,0 +1,45 @@
+// BlockPublisher: puts AccelBlocks on the DDS block topic, paced like the acquisition.
+//
+// Shared by the tools that feed the daemon (`gearpath sim`, `gearpath replay`). Pacing follows
+// each block's t0: real time, N times faster, or as fast as the subscribers take them. The block
+// topic is reliable keep-all with resource limits (idl/dds/qos.cc), so a writer that outruns
+// its readers blocks in Write instead of dropping: "as fast as possible" loses nothing.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "core/common/accel_block.h"
+#include "core/common/result.h"
+
+namespace gearpath::tools {
+
+struct PublisherOptions {
+  int domain_id = 0;
+  std::string topic;        // empty = the default AccelBlock topic name
+  double speedup = 1.0;     // 1 = real time, N = N times faster, 0 = as fast as possible
+  int min_subscribers = 1;  // wait for this many matched readers before the first block
+  std::chrono::milliseconds match_timeout{10000};
+};
+
+class BlockPublisher {
+ public:
+  // Throws std::runtime_error (naming the DDS call that failed) if the endpoint cannot be made.
+  explicit BlockPublisher(const PublisherOptions& options);
+  ~BlockPublisher();
+  BlockPublisher(const BlockPublisher&) = delete;
+  BlockPublisher& operator=(const BlockPublisher&) = delete;
+
+  // Waits for the subscribers (first call only), sleeps until the block is due, publishes it.
+  Status Publish(const AccelBlockView& block);
+
+  // Blocks until every matched reader has acknowledged what was written, or the timeout.
+  Status Flush(std::chrono::milliseconds timeout);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gearpath::tools
