@@ -16,24 +16,25 @@ constexpr const char* kStage = "harmonic indicator";
 Result<HarmonicIndicator> ComputeHarmonicIndicator(std::span<const double> ses, double bin_hz,
                                                    double characteristic_hz,
                                                    const HarmonicSearch& search) noexcept {
-  const std::string stage = kStage;
-  if (ses.empty()) return Error{stage + ": SES is empty"};
+  // Strings are built only on the error paths: the success path allocates nothing.
+  const auto stage = [] { return std::string(kStage); };
+  if (ses.empty()) return Error{stage() + ": SES is empty"};
   if (Status s = dsp_detail::CheckFinite(kStage, "SES", ses); !s) return Error{s.error()};
   if (!std::isfinite(bin_hz) || bin_hz <= 0.0) {
-    return Error{stage + ": bin width " + std::to_string(bin_hz) +
+    return Error{stage() + ": bin width " + std::to_string(bin_hz) +
                  " Hz must be finite and positive"};
   }
   if (!std::isfinite(characteristic_hz) || characteristic_hz <= 0.0) {
-    return Error{stage + ": characteristic frequency " + std::to_string(characteristic_hz) +
+    return Error{stage() + ": characteristic frequency " + std::to_string(characteristic_hz) +
                  " Hz must be finite and positive"};
   }
   if (!std::isfinite(search.relative_tolerance) || search.relative_tolerance < 0.0) {
-    return Error{stage + ": relative tolerance " + std::to_string(search.relative_tolerance) +
+    return Error{stage() + ": relative tolerance " + std::to_string(search.relative_tolerance) +
                  " must be finite and non-negative"};
   }
   const double top_hz = static_cast<double>(ses.size() - 1) * bin_hz;
   if (kIndicatorHarmonics * characteristic_hz > top_hz) {
-    return Error{stage + ": characteristic frequency " + std::to_string(characteristic_hz) +
+    return Error{stage() + ": characteristic frequency " + std::to_string(characteristic_hz) +
                  " Hz puts harmonic 5 above the SES's top frequency " + std::to_string(top_hz) +
                  " Hz (f_c must be at most Nyquist/5)"};
   }

@@ -1,0 +1,94 @@
+// The per-block process steps of core/dsp allocate nothing once configured (DESIGN.md: hot
+// paths allocate nothing). Checked by counting global operator new calls while they run; the
+// replacement operators below are this test executable's, and count only inside a scope.
+#include <gtest/gtest.h>
+
+#include <complex>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include "core/dsp/band_pass.h"
+#include "core/dsp/envelope.h"
+#include "core/dsp/envelope_spectrum.h"
+#include "core/dsp/harmonic_indicator.h"
+#include "core/dsp/kurtogram.h"
+#include "core/dsp/spectrum.h"
+#include "tests/core/dsp/test_signals.h"
+
+namespace {
+thread_local bool counting = false;
+thread_local int allocations = 0;
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (counting) ++allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+// operator new[] and the nothrow forms call this one by default; libstdc++'s operator delete
+// frees with std::free, which matches std::malloc, so delete needs no replacement.
+
+namespace gearpath {
+namespace {
+
+class AllocationCounter {
+ public:
+  AllocationCounter() {
+    allocations = 0;
+    counting = true;
+  }
+  ~AllocationCounter() { counting = false; }
+  int count() const { return allocations; }
+};
+
+constexpr double kFs = 8000.0;
+constexpr std::size_t kN = 4096;
+
+TEST(DspAllocations, ProcessStepsAllocateNothingOnceConfigured) {
+  std::vector<double> x = dsp_test::WhiteNoise(2 * kN, 1.0, 9);
+  dsp_test::AddResonanceImpulses(x, kFs, 20.0, 0.01, 2000.0, 0.03, 3.0);
+  const std::span<const double> one(x.data(), kN);
+
+  auto spectrum = Spectrum::Create(kN, 2, kFs).value();
+  auto inverse = InverseSpectrum::Create(kN, 2).value();
+  auto kurtogram = Kurtogram::Create(kN, kFs, KurtogramOptions{}).value();
+  auto band_pass = BandPass::Create(kN, kFs, 50.0).value();
+  auto envelope = Envelope::Create(kN).value();
+  auto ses = EnvelopeSpectrum::Create(kN, kFs).value();
+  std::vector<std::complex<double>> s(2 * spectrum.bin_count());
+  std::vector<std::complex<double>> z(kN);
+  std::vector<double> y(2 * kN);
+  std::vector<double> e(ses.bin_count());
+
+  // Each step runs once before counting: a first call may warm lazily built state elsewhere.
+  auto allocations_of = [](auto&& step) {
+    EXPECT_TRUE(step());
+    AllocationCounter counter;
+    const bool ok = step();
+    const int count = counter.count();
+    EXPECT_TRUE(ok);
+    return count;
+  };
+  EXPECT_EQ(allocations_of([&] { return spectrum.Process(x, s).ok(); }), 0);
+  EXPECT_EQ(allocations_of([&] { return inverse.Process(s, y).ok(); }), 0);
+  KurtogramBand band;
+  EXPECT_EQ(allocations_of([&] {
+              auto r = kurtogram.Process(one);
+              if (r.ok()) band = *r;
+              return r.ok();
+            }),
+            0);
+  EXPECT_EQ(allocations_of([&] {
+              return band_pass.Process(one, band.low_hz, band.high_hz, std::span(y).first(kN)).ok();
+            }),
+            0);
+  EXPECT_EQ(allocations_of([&] { return envelope.ProcessAnalytic(one, z).ok(); }), 0);
+  EXPECT_EQ(allocations_of([&] { return ses.Process(std::span(y).first(kN), e).ok(); }), 0);
+  EXPECT_EQ(allocations_of([&] { return ComputeHarmonicIndicator(e, ses.bin_hz(), 20.0).ok(); }),
+            0);
+  EXPECT_EQ(allocations_of([&] { return EnhancementPercent(2.0, 1.0).ok(); }), 0);
+}
+
+}  // namespace
+}  // namespace gearpath
