@@ -41,6 +41,7 @@
 #include "core/common/result.h"
 #include "core/diagnosis/fixed_text.h"
 #include "core/diagnosis/gear_verdict.h"
+#include "core/dsp/harmonic_indicator.h"  // kIndicatorHarmonics (5, seed Sec. 4.3)
 #include "core/diagnosis/train_layout.h"
 #include "core/frf/frf_set.h"
 #include "core/inverse/identification_operator.h"
@@ -48,7 +49,6 @@
 
 namespace gearpath {
 
-inline constexpr std::size_t kIndicatorHarmonics = 5;  // seed Sec. 4.3: first five harmonics
 inline constexpr std::size_t kMaxShapes = 4;
 
 struct AnalysisOptions {
