@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <span>
+#include <utility>
 
 #include "core/common/result.h"
 #include "core/dsp/fft_plan.h"

@@ -11,6 +11,7 @@
 #include <complex>
 #include <cstddef>
 #include <span>
+#include <utility>
 
 #include "core/common/result.h"
 #include "core/dsp/fft_plan.h"

@@ -45,7 +45,8 @@
 //   carries sigma = 2 / sqrt(n), the standard deviation of the SK estimate of a circular
 //   Gaussian envelope from n independent samples (delta method: Var|c|^2 = 1, Var|c|^4 = 20,
 //   Cov = 4 for unit power, giving (20 + 16 - 32)/n = 4/n); n is the band's bin count, the
-//   number of independent envelope samples in the block. `significant` = SK > k sigma
+//   number of independent envelope samples in the block (the taper makes the true spread a few
+//   per cent larger: 1/r of the samples carry the weight). `significant` = SK > k sigma
 //   (options.significance_sigmas, default 5: the maximum is taken over up to a few hundred
 //   correlated cells, so 3 sigma would fire on noise).
 // - The envelope band must hold the modulation it is meant to show: options.min_bandwidth_hz
@@ -57,6 +58,7 @@
 #include <complex>
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/common/result.h"
@@ -114,8 +116,8 @@ class Kurtogram {
   // wrong length or with non-finite samples. A silent block scores 0 everywhere.
   Result<KurtogramBand> Process(std::span<const double> block) noexcept;
 
-  // The map of the last processed block. Row r is binary level (r+1)/2 for odd r... see
-  // row_node(); each row has row_node(r).BandCount() values, band 0 first.
+  // The map of the last processed block, rows in tree order 0, 1, 1.6, 2, ... (row_node(r)
+  // says which); row r has row_node(r).BandCount() values, band 0 (lowest frequency) first.
   std::size_t row_count() const noexcept { return rows_.size(); }
   KurtogramNode row_node(std::size_t row) const noexcept { return rows_[row].node; }
   double row_bandwidth_hz(std::size_t row) const noexcept;
@@ -133,7 +135,7 @@ class Kurtogram {
     std::size_t plan = 0;  // index into envelope_plans_
   };
 
-  Kurtogram(FftPlan forward) : forward_(std::move(forward)) {}
+  explicit Kurtogram(FftPlan forward) : forward_(std::move(forward)) {}
   std::size_t BandFirstBin(int bands, int index) const noexcept;
   double BandKurtosis(FftPlan& plan, std::size_t first_bin, std::size_t end_bin) noexcept;
 

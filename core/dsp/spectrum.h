@@ -22,6 +22,7 @@
 #include <complex>
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/common/result.h"
@@ -53,7 +54,7 @@ class Spectrum {
                  std::span<std::complex<double>> planar_spectrum) noexcept;
 
  private:
-  Spectrum(FftPlan plan) : plan_(std::move(plan)) {}
+  explicit Spectrum(FftPlan plan) : plan_(std::move(plan)) {}
   FftPlan plan_;
   std::size_t block_length_ = 0;
   std::size_t channels_ = 0;
@@ -77,7 +78,7 @@ class InverseSpectrum {
                  std::span<double> planar_samples) noexcept;
 
  private:
-  InverseSpectrum(FftPlan plan) : plan_(std::move(plan)) {}
+  explicit InverseSpectrum(FftPlan plan) : plan_(std::move(plan)) {}
   FftPlan plan_;
   std::size_t block_length_ = 0;
   std::size_t channels_ = 0;
