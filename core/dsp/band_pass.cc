@@ -67,8 +67,8 @@ Status BandPass::Process(std::span<const double> input, double low_hz, double hi
   if (!std::isfinite(low_hz) || !std::isfinite(high_hz) || low_hz < 0.0 || high_hz > nyquist ||
       !(low_hz < high_hz)) {
     return Error{std::string(kStage) + ": band [" + std::to_string(low_hz) + ", " +
-                 std::to_string(high_hz) + "] Hz must satisfy 0 <= low < high <= fs/2 = " +
-                 std::to_string(nyquist) + " Hz"};
+                 std::to_string(high_hz) +
+                 "] Hz must satisfy 0 <= low < high <= fs/2 = " + std::to_string(nyquist) + " Hz"};
   }
   if (Status s = dsp_detail::CheckFinite(kStage, "input block", input); !s) return s;
 

@@ -14,8 +14,7 @@ constexpr const char* kStage = "envelope spectrum";
 
 }  // namespace
 
-Result<EnvelopeSpectrum> EnvelopeSpectrum::Create(std::size_t block_length,
-                                                  double sample_rate_hz) {
+Result<EnvelopeSpectrum> EnvelopeSpectrum::Create(std::size_t block_length, double sample_rate_hz) {
   if (!std::isfinite(sample_rate_hz) || sample_rate_hz <= 0.0) {
     return Error{std::string(kStage) + ": sample rate " + std::to_string(sample_rate_hz) +
                  " Hz must be finite and positive"};

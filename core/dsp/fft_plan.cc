@@ -36,8 +36,8 @@ const char* KindName(FftKind kind) {
 }  // namespace
 
 Result<FftPlan> FftPlan::Create(FftKind kind, std::size_t length) {
-  const std::string what = std::string("FFT plan (") + KindName(kind) + ", " +
-                           std::to_string(length) + " points): ";
+  const std::string what =
+      std::string("FFT plan (") + KindName(kind) + ", " + std::to_string(length) + " points): ";
   if (length == 0) return Error{what + "length must be at least 1"};
   if (length > static_cast<std::size_t>(INT_MAX)) return Error{what + "length exceeds INT_MAX"};
 
@@ -72,10 +72,9 @@ Result<FftPlan> FftPlan::Create(FftKind kind, std::size_t length) {
         break;
       case FftKind::kComplexForward:
       case FftKind::kComplexBackward:
-        p = fftw_plan_dft_1d(n, static_cast<fftw_complex*>(plan.in_),
-                             static_cast<fftw_complex*>(plan.out_),
-                             kind == FftKind::kComplexForward ? FFTW_FORWARD : FFTW_BACKWARD,
-                             FFTW_ESTIMATE);
+        p = fftw_plan_dft_1d(
+            n, static_cast<fftw_complex*>(plan.in_), static_cast<fftw_complex*>(plan.out_),
+            kind == FftKind::kComplexForward ? FFTW_FORWARD : FFTW_BACKWARD, FFTW_ESTIMATE);
         break;
     }
     if (p == nullptr) return Error{what + "FFTW could not create the plan"};

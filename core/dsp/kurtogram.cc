@@ -147,8 +147,7 @@ std::size_t Kurtogram::BandFirstBin(int bands, int index) const noexcept {
   return std::max<std::size_t>(k, 1);
 }
 
-double Kurtogram::BandKurtosis(FftPlan& plan, std::size_t first_bin,
-                               std::size_t end_bin) noexcept {
+double Kurtogram::BandKurtosis(FftPlan& plan, std::size_t first_bin, std::size_t end_bin) noexcept {
   std::span<std::complex<double>> in = plan.complex_in();
   const std::span<const std::complex<double>> spectrum = forward_.complex_out();
   // Baseband shift: bin first_bin goes to 0. A frequency shift multiplies c(t) by a unit
@@ -167,7 +166,7 @@ double Kurtogram::BandKurtosis(FftPlan& plan, std::size_t first_bin,
   if (!(m2 > 0.0)) return 0.0;  // a silent band: no evidence either way
   const double m = static_cast<double>(in.size());
   const double tapered = (m4 / m) / ((m2 / m) * (m2 / m));  // SK + 2 of the tapered block
-  return tapered / taper_ratio_ - 2.0;                       // undo the taper (see header)
+  return tapered / taper_ratio_ - 2.0;                      // undo the taper (see header)
 }
 
 void Kurtogram::Whiten() noexcept {

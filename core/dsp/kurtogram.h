@@ -72,11 +72,11 @@ enum class KurtogramWhitening {
 };
 
 struct KurtogramOptions {
-  int depth = 6;                    // deepest binary level, 0..12 (rows 0, 1, 1.6, ..., depth)
-  double min_bandwidth_hz = 0.0;    // narrowest band allowed; caps the depth
+  int depth = 6;                  // deepest binary level, 0..12 (rows 0, 1, 1.6, ..., depth)
+  double min_bandwidth_hz = 0.0;  // narrowest band allowed; caps the depth
   KurtogramWhitening whitening = KurtogramWhitening::kAutoregressive;
-  int ar_order = 64;                // AR whitening order, 1..block_length/4
-  double taper_fraction = 0.1;      // Tukey taper share of the block, [0, 1]
+  int ar_order = 64;                 // AR whitening order, 1..block_length/4
+  double taper_fraction = 0.1;       // Tukey taper share of the block, [0, 1]
   double significance_sigmas = 5.0;  // SK must exceed this many sigma to be `significant`
 };
 
@@ -131,7 +131,7 @@ class Kurtogram {
 
  private:
   struct Row {
-    KurtogramNode node;   // index unused
+    KurtogramNode node;    // index unused
     std::size_t plan = 0;  // index into envelope_plans_
   };
 
@@ -143,10 +143,10 @@ class Kurtogram {
 
   FftPlan forward_;
   std::vector<FftPlan> envelope_plans_;
-  std::vector<double> taper_;         // Tukey window, block_length
-  double taper_ratio_ = 1.0;          // <w^4> / <w^2>^2
-  std::vector<double> ar_work_;       // autocorrelation, coefficients, Levinson scratch
-  std::vector<double> history_;       // whitening input copy, block_length
+  std::vector<double> taper_;    // Tukey window, block_length
+  double taper_ratio_ = 1.0;     // <w^4> / <w^2>^2
+  std::vector<double> ar_work_;  // autocorrelation, coefficients, Levinson scratch
+  std::vector<double> history_;  // whitening input copy, block_length
   std::vector<Row> rows_;
   std::vector<double> map_;  // rows x max_bands_, NaN where a row has fewer bands
   std::size_t max_bands_ = 0;

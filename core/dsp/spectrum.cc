@@ -95,8 +95,7 @@ Status InverseSpectrum::Process(std::span<const std::complex<double>> planar_spe
       !s) {
     return s;
   }
-  if (Status s =
-          dsp_detail::CheckLength(kInverse, "sample output", planar_samples, n * channels_);
+  if (Status s = dsp_detail::CheckLength(kInverse, "sample output", planar_samples, n * channels_);
       !s) {
     return s;
   }

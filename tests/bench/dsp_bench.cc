@@ -56,8 +56,8 @@ BENCHMARK(BM_SpectrumEightChannels)->Unit(benchmark::kMicrosecond);
 void BM_Kurtogram(benchmark::State& state) {
   KurtogramOptions options;
   options.depth = 6;
-  options.whitening = state.range(0) != 0 ? KurtogramWhitening::kAutoregressive
-                                          : KurtogramWhitening::kNone;
+  options.whitening =
+      state.range(0) != 0 ? KurtogramWhitening::kAutoregressive : KurtogramWhitening::kNone;
   auto kurtogram = Kurtogram::Create(kN, kFs, options).value();
   const auto x = Signal(1, 2);
   for (auto _ : state) benchmark::DoNotOptimize(kurtogram.Process(x).ok());
@@ -107,8 +107,8 @@ void BM_OneBlockChain(benchmark::State& state) {
     if (!result.ok()) state.SkipWithError("indicator");
     benchmark::DoNotOptimize(result->sum);
   }
-  state.counters["blocks_per_s"] = benchmark::Counter(
-      static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["blocks_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_OneBlockChain)->Unit(benchmark::kMillisecond);
 

@@ -85,7 +85,8 @@ TEST(BandPass, GainIsOneInsideRaisedCosineOutsideAndZeroBeyond) {
   auto band_pass = BandPass::Create(kN, kFs, 100.0).value();
   EXPECT_EQ(band_pass.Gain(1000.0, 1000.0, 2000.0), 1.0);
   EXPECT_EQ(band_pass.Gain(2000.0, 1000.0, 2000.0), 1.0);
-  EXPECT_NEAR(band_pass.Gain(975.0, 1000.0, 2000.0), 0.5 * (1.0 + std::cos(std::numbers::pi / 4.0)), 1e-15);
+  EXPECT_NEAR(band_pass.Gain(975.0, 1000.0, 2000.0), 0.5 * (1.0 + std::cos(std::numbers::pi / 4.0)),
+              1e-15);
   EXPECT_EQ(band_pass.Gain(2100.0, 1000.0, 2000.0), 0.0);
   EXPECT_EQ(band_pass.Gain(500.0, 1000.0, 2000.0), 0.0);
 }
@@ -106,9 +107,9 @@ TEST(BandPass, RejectsBandsOutsideZeroToNyquistAndBadBlocks) {
   auto band_pass = BandPass::Create(kN, kFs, 10.0).value();
   std::vector<double> x(kN, 0.0);
   std::vector<double> y(kN);
-  for (auto [low, high] : {std::pair{-1.0, 100.0}, std::pair{100.0, 4001.0},
-                           std::pair{500.0, 500.0}, std::pair{600.0, 500.0},
-                           std::pair{std::nan(""), 500.0}}) {
+  for (auto [low, high] :
+       {std::pair{-1.0, 100.0}, std::pair{100.0, 4001.0}, std::pair{500.0, 500.0},
+        std::pair{600.0, 500.0}, std::pair{std::nan(""), 500.0}}) {
     Status s = band_pass.Process(x, low, high, y);
     ASSERT_FALSE(s.ok()) << low << " " << high;
     EXPECT_NE(s.error().find("0 <= low < high <= fs/2"), std::string::npos) << s.error();

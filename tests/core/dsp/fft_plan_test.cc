@@ -50,7 +50,8 @@ TEST(FftPlan, ForwardThenBackwardGivesNTimesTheInput) {
   auto forward = FftPlan::Create(FftKind::kComplexForward, n).value();
   auto backward = FftPlan::Create(FftKind::kComplexBackward, n).value();
   for (std::size_t i = 0; i < n; ++i) {
-    forward.complex_in()[i] = {std::sin(1.0 + static_cast<double>(i)), 0.1 * static_cast<double>(i)};
+    forward.complex_in()[i] = {std::sin(1.0 + static_cast<double>(i)),
+                               0.1 * static_cast<double>(i)};
   }
   std::vector<std::complex<double>> x(forward.complex_in().begin(), forward.complex_in().end());
   forward.Execute();
@@ -83,8 +84,8 @@ TEST(FftPlan, PlansCreatedAndRunInParallelThreadsAgree) {
   for (int t = 0; t < kThreads; ++t) {
     threads.emplace_back([t, &dc] {
       for (int rep = 0; rep < 20; ++rep) {
-        auto plan = FftPlan::Create(FftKind::kRealToComplex, 64 + static_cast<std::size_t>(rep))
-                        .value();
+        auto plan =
+            FftPlan::Create(FftKind::kRealToComplex, 64 + static_cast<std::size_t>(rep)).value();
         for (double& v : plan.real_in()) v = 1.0;
         plan.Execute();
         dc[t] += plan.complex_out()[0].real() - static_cast<double>(plan.length());

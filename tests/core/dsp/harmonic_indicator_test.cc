@@ -10,7 +10,7 @@
 namespace gearpath {
 namespace {
 
-constexpr double kBin = 0.5;        // Hz
+constexpr double kBin = 0.5;         // Hz
 constexpr std::size_t kBins = 8001;  // up to 4000 Hz
 
 // A synthetic SES: a small floor plus lines of the given heights at the given frequencies.

@@ -30,8 +30,8 @@ TEST_P(SpectrumOfLength, SinusoidOnAnInteriorBinGivesItsComplexAmplitude) {
   const std::size_t k0 = n / 3;
   const double amplitude = 2.5;
   const double phase = 0.7;
-  const auto x = Cosine(n, kFs, static_cast<double>(k0) * kFs / static_cast<double>(n),
-                        amplitude, phase);
+  const auto x =
+      Cosine(n, kFs, static_cast<double>(k0) * kFs / static_cast<double>(n), amplitude, phase);
   const auto s = SpectrumOf(x, 1);
   ASSERT_EQ(s.size(), n / 2 + 1);
   EXPECT_NEAR(std::abs(s[k0] - std::polar(amplitude, phase)), 0.0, 1e-12);
