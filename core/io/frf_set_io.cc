@@ -58,13 +58,13 @@ std::optional<FrfQuantity> ParseQuantity(const std::string& s) {
 std::optional<std::string> CheckFrequencyAxis(const Eigen::VectorXd& f, const std::string& what) {
   if (f.size() == 0) return what + " has no bins";
   for (Eigen::Index k = 0; k < f.size(); ++k) {
-    if (!std::isfinite(f[k])) return what + ": non-finite value " + Num(f[k]) + " at index " +
-                                     std::to_string(k);
-    if (f[k] < 0) return what + ": negative frequency " + Num(f[k]) + " Hz at index " +
-                         std::to_string(k);
+    if (!std::isfinite(f[k]))
+      return what + ": non-finite value " + Num(f[k]) + " at index " + std::to_string(k);
+    if (f[k] < 0)
+      return what + ": negative frequency " + Num(f[k]) + " Hz at index " + std::to_string(k);
     if (k > 0 && !(f[k] > f[k - 1])) {
-      return what + ": not strictly increasing at index " + std::to_string(k) + " (" +
-             Num(f[k]) + " Hz after " + Num(f[k - 1]) + " Hz)";
+      return what + ": not strictly increasing at index " + std::to_string(k) + " (" + Num(f[k]) +
+             " Hz after " + Num(f[k - 1]) + " Hz)";
     }
   }
   return std::nullopt;
@@ -88,9 +88,9 @@ std::optional<std::string> CheckBlocks(const Blocks& blocks, const Eigen::Vector
     for (Eigen::Index i = 0; i < rows; ++i) {
       for (Eigen::Index j = 0; j < cols; ++j) {
         if (!std::isfinite(m(i, j).real()) || !std::isfinite(m(i, j).imag())) {
-          return what + ": non-finite value at [" + std::to_string(k) + ", " +
-                 std::to_string(i) + ", " + std::to_string(j) + "] (frequency " +
-                 Num(f[static_cast<Eigen::Index>(k)]) + " Hz)";
+          return what + ": non-finite value at [" + std::to_string(k) + ", " + std::to_string(i) +
+                 ", " + std::to_string(j) + "] (frequency " + Num(f[static_cast<Eigen::Index>(k)]) +
+                 " Hz)";
         }
       }
     }
@@ -114,7 +114,9 @@ std::optional<std::string> CheckDofs(const std::vector<CoupledDof>& dofs, const 
   return std::nullopt;
 }
 
-bool HasDecoupled(const FrfSet& set) { return set.decoupled.bins() > 0 || !set.decoupled.at.empty(); }
+bool HasDecoupled(const FrfSet& set) {
+  return set.decoupled.bins() > 0 || !set.decoupled.at.empty();
+}
 
 // ---- reading ----
 
@@ -139,15 +141,14 @@ class Manifest {
   }
 
   bool Type(const Json& value, const std::string& path, Json::value_t type, const char* name) {
-    const bool match = type == Json::value_t::number_integer
-                           ? value.is_number_integer()
-                           : value.type() == type;
+    const bool match =
+        type == Json::value_t::number_integer ? value.is_number_integer() : value.type() == type;
     if (!match) Fail("key " + Quoted(path) + " must be " + name + ", got " + value.type_name());
     return match;
   }
 
-  bool String(const Json& obj, const std::string& prefix, const std::string& key,
-              std::string* out, bool required = true) {
+  bool String(const Json& obj, const std::string& prefix, const std::string& key, std::string* out,
+              bool required = true) {
     const Json* v = Get(obj, prefix, key, required);
     if (!v) return !required;
     if (!Type(*v, Path(prefix, key), Json::value_t::string, "a string")) return false;
@@ -221,24 +222,25 @@ bool ReadDofList(Manifest& m, const Json& dofs, const std::string& prefix, const
 Result<Blocks> ReadBlocks(const fs::path& file, const std::string& key, const Eigen::VectorXd& f,
                           std::size_t rows, std::size_t cols, const std::string& dims) {
   if (!fs::exists(file)) {
-    return Error{file.string() + ": missing array file (named by manifest key " + Quoted(key) + ")"};
+    return Error{file.string() + ": missing array file (named by manifest key " + Quoted(key) +
+                 ")"};
   }
   auto array = ReadNpy<std::complex<double>>(file);
   if (!array) return Error{array.error()};
   const std::vector<std::size_t> expected = {static_cast<std::size_t>(f.size()), rows, cols};
   if (array->shape != expected) {
-    return Error{file.string() + ": shape " + Shape(array->shape) + " does not match the manifest: expected " +
-                 Shape(expected) + " " + dims};
+    return Error{file.string() + ": shape " + Shape(array->shape) +
+                 " does not match the manifest: expected " + Shape(expected) + " " + dims};
   }
-  Blocks blocks(expected[0], Eigen::MatrixXcd(static_cast<Eigen::Index>(rows),
-                                              static_cast<Eigen::Index>(cols)));
+  Blocks blocks(expected[0],
+                Eigen::MatrixXcd(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols)));
   const std::complex<double>* p = array->data.data();
   for (std::size_t k = 0; k < expected[0]; ++k) {
     for (std::size_t i = 0; i < rows; ++i) {
       for (std::size_t j = 0; j < cols; ++j, ++p) {
         if (!std::isfinite(p->real()) || !std::isfinite(p->imag())) {
-          return Error{file.string() + ": non-finite value at index [" + std::to_string(k) +
-                       ", " + std::to_string(i) + ", " + std::to_string(j) + "] (frequency " +
+          return Error{file.string() + ": non-finite value at index [" + std::to_string(k) + ", " +
+                       std::to_string(i) + ", " + std::to_string(j) + "] (frequency " +
                        Num(f[static_cast<Eigen::Index>(k)]) + " Hz)"};
         }
         blocks[k](static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = *p;
@@ -275,18 +277,24 @@ Json DofsJson(const std::vector<CoupledDof>& dofs) {
 
 const char* FrfQuantityName(FrfQuantity quantity) noexcept {
   switch (quantity) {
-    case FrfQuantity::kAccelerance: return "accelerance";
-    case FrfQuantity::kMobility: return "mobility";
-    case FrfQuantity::kReceptance: return "receptance";
+    case FrfQuantity::kAccelerance:
+      return "accelerance";
+    case FrfQuantity::kMobility:
+      return "mobility";
+    case FrfQuantity::kReceptance:
+      return "receptance";
   }
   return "unknown";
 }
 
 const char* FrfQuantitySiUnit(FrfQuantity quantity) noexcept {
   switch (quantity) {
-    case FrfQuantity::kAccelerance: return "m/s^2/N";
-    case FrfQuantity::kMobility: return "m/s/N";
-    case FrfQuantity::kReceptance: return "m/N";
+    case FrfQuantity::kAccelerance:
+      return "m/s^2/N";
+    case FrfQuantity::kMobility:
+      return "m/s/N";
+    case FrfQuantity::kReceptance:
+      return "m/N";
   }
   return "?";
 }
@@ -346,9 +354,9 @@ Status ValidateFrfSet(const FrfSet& set) {
     std::set<std::string> dof_names;
     if (c.active.empty()) return Error{"coupled.dofs.a is empty"};
     if (c.passive.empty()) return Error{"coupled.dofs.p is empty"};
-    for (auto [list, key] : {std::pair{&c.active, "coupled.dofs.a"},
-                             std::pair{&c.passive, "coupled.dofs.p"},
-                             std::pair{&c.measurement, "coupled.dofs.m"}}) {
+    for (auto [list, key] :
+         {std::pair{&c.active, "coupled.dofs.a"}, std::pair{&c.passive, "coupled.dofs.p"},
+          std::pair{&c.measurement, "coupled.dofs.m"}}) {
       if (auto why = CheckDofs(*list, key, &dof_names)) return Error{*why};
     }
     const auto& f = c.blocks.frequency_hz;
@@ -386,7 +394,8 @@ Status ValidateFrfSet(const FrfSet& set) {
       checks.push_back({&c.blocks.mp, nm, np, "coupled.blocks.mp", "(n_m x n_p)"});
     }
     for (const Check& check : checks) {
-      if (auto why = CheckBlocks(*check.blocks, f, check.rows, check.cols, check.what, check.dims)) {
+      if (auto why =
+              CheckBlocks(*check.blocks, f, check.rows, check.cols, check.what, check.dims)) {
         return Error{*why};
       }
     }
@@ -412,10 +421,12 @@ Result<FrfSet> ReadFrfSet(const fs::path& dir) {
   std::string format;
   if (!m.String(root, "", "format", &format)) return m.error();
   if (format != kFrfSetFormatName) {
-    return Error{mf + ": format: expected " + Quoted(kFrfSetFormatName) + ", got " + Quoted(format)};
+    return Error{mf + ": format: expected " + Quoted(kFrfSetFormatName) + ", got " +
+                 Quoted(format)};
   }
   const Json* version = m.Get(root, "", "format_version", true);
-  if (!version || !m.Type(*version, "format_version", Json::value_t::number_integer, "an integer")) {
+  if (!version ||
+      !m.Type(*version, "format_version", Json::value_t::number_integer, "an integer")) {
     return m.error();
   }
   if (version->get<long long>() != kFrfFormatVersion) {
@@ -489,7 +500,8 @@ Result<FrfSet> ReadFrfSet(const fs::path& dir) {
   const Json* coupled = m.Object(root, "", "coupled", false);
   if (m.failed()) return m.error();
   if (!decoupled && !coupled) {
-    return Error{mf + ": neither \"decoupled\" nor \"coupled\" is present: a set needs at least one"};
+    return Error{mf +
+                 ": neither \"decoupled\" nor \"coupled\" is present: a set needs at least one"};
   }
   // Metadata first (cheap, and its messages are the most useful), arrays after.
   std::optional<CoupledSet> coupled_set;
@@ -517,7 +529,8 @@ Result<FrfSet> ReadFrfSet(const fs::path& dir) {
       return Error{mf + ": coupled.blocks.ma and coupled.blocks.mp must be given together"};
     }
     if (!coupled_set->measurement.empty() && files.ma.empty()) {
-      return Error{mf + ": coupled.dofs.m lists " + std::to_string(coupled_set->measurement.size()) +
+      return Error{mf + ": coupled.dofs.m lists " +
+                   std::to_string(coupled_set->measurement.size()) +
                    " DOFs but coupled.blocks.ma/mp are absent"};
     }
     if (coupled_set->measurement.empty() && !files.ma.empty()) {
@@ -535,8 +548,9 @@ Result<FrfSet> ReadFrfSet(const fs::path& dir) {
   {
     FrfSet probe = set;
     probe.decoupled.frequency_hz = Eigen::VectorXd::Zero(1);
-    probe.decoupled.at.assign(1, Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(set.channels.size()),
-                                                        static_cast<Eigen::Index>(set.paths.size())));
+    probe.decoupled.at.assign(1,
+                              Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(set.channels.size()),
+                                                     static_cast<Eigen::Index>(set.paths.size())));
     if (!decoupled) probe.decoupled = FrfMatrix{};
     if (coupled_set) {
       CoupledSet c = *coupled_set;
@@ -559,7 +573,8 @@ Result<FrfSet> ReadFrfSet(const fs::path& dir) {
   // Arrays.
   const fs::path freq_path = dir / frequency_file;
   if (!fs::exists(freq_path)) {
-    return Error{freq_path.string() + ": missing array file (named by manifest key \"frequency.file\")"};
+    return Error{freq_path.string() +
+                 ": missing array file (named by manifest key \"frequency.file\")"};
   }
   auto freq = ReadNpy<double>(freq_path);
   if (!freq) return Error{freq.error()};
@@ -567,8 +582,8 @@ Result<FrfSet> ReadFrfSet(const fs::path& dir) {
     return Error{freq_path.string() + ": shape " + Shape(freq->shape) +
                  " is not 1-D: expected (n_freq,)"};
   }
-  Eigen::VectorXd f = Eigen::Map<const Eigen::VectorXd>(freq->data.data(),
-                                                        static_cast<Eigen::Index>(freq->data.size()));
+  Eigen::VectorXd f = Eigen::Map<const Eigen::VectorXd>(
+      freq->data.data(), static_cast<Eigen::Index>(freq->data.size()));
   if (auto why = CheckFrequencyAxis(f, freq_path.string())) return Error{*why};
 
   if (decoupled) {

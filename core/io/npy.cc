@@ -43,11 +43,16 @@ struct DtypeOf<std::int32_t> {
 // The canonical little-endian descr NumPy writes for each dtype.
 const char* CanonicalDescr(NpyDtype dtype) {
   switch (dtype) {
-    case NpyDtype::kComplex128: return "<c16";
-    case NpyDtype::kFloat64: return "<f8";
-    case NpyDtype::kFloat32: return "<f4";
-    case NpyDtype::kInt16: return "<i2";
-    case NpyDtype::kInt32: return "<i4";
+    case NpyDtype::kComplex128:
+      return "<c16";
+    case NpyDtype::kFloat64:
+      return "<f8";
+    case NpyDtype::kFloat32:
+      return "<f4";
+    case NpyDtype::kInt16:
+      return "<i2";
+    case NpyDtype::kInt32:
+      return "<i4";
   }
   return "?";
 }
@@ -118,9 +123,8 @@ class HeaderParser {
     return false;
   }
   void SkipSpace() {
-    while (pos_ < text_.size() &&
-           (text_[pos_] == ' ' || text_[pos_] == '\t' || text_[pos_] == '\n' ||
-            text_[pos_] == '\r')) {
+    while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\t' ||
+                                   text_[pos_] == '\n' || text_[pos_] == '\r')) {
       ++pos_;
     }
   }
@@ -212,11 +216,16 @@ std::vector<T> FortranToC(const std::vector<T>& f, const std::vector<std::size_t
 
 const char* NpyDtypeName(NpyDtype dtype) noexcept {
   switch (dtype) {
-    case NpyDtype::kComplex128: return "complex128";
-    case NpyDtype::kFloat64: return "float64";
-    case NpyDtype::kFloat32: return "float32";
-    case NpyDtype::kInt16: return "int16";
-    case NpyDtype::kInt32: return "int32";
+    case NpyDtype::kComplex128:
+      return "complex128";
+    case NpyDtype::kFloat64:
+      return "float64";
+    case NpyDtype::kFloat32:
+      return "float32";
+    case NpyDtype::kInt16:
+      return "int16";
+    case NpyDtype::kInt32:
+      return "int32";
   }
   return "unknown";
 }
@@ -352,8 +361,8 @@ Status WriteNpy(const std::filesystem::path& file, std::span<const T> data,
   return Status::Ok();
 }
 
-#define GEARPATH_NPY_INSTANTIATE(T)                                         \
-  template Result<NpyArray<T>> ReadNpy<T>(const std::filesystem::path&);    \
+#define GEARPATH_NPY_INSTANTIATE(T)                                             \
+  template Result<NpyArray<T>> ReadNpy<T>(const std::filesystem::path&);        \
   template Status WriteNpy<T>(const std::filesystem::path&, std::span<const T>, \
                               const std::vector<std::size_t>&);
 GEARPATH_NPY_INSTANTIATE(std::complex<double>)

@@ -33,10 +33,10 @@ const char* NpyDtypeName(NpyDtype dtype) noexcept;
 struct NpyHeader {
   int major_version = 1;
   int minor_version = 0;
-  std::string descr;                // as written, e.g. "<c16"
+  std::string descr;  // as written, e.g. "<c16"
   bool fortran_order = false;
-  std::vector<std::size_t> shape;   // empty for a 0-d array
-  std::size_t data_offset = 0;      // bytes from the start of the file to the first element
+  std::vector<std::size_t> shape;  // empty for a 0-d array
+  std::size_t data_offset = 0;     // bytes from the start of the file to the first element
 
   std::size_t element_count() const;
 };

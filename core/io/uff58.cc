@@ -19,7 +19,8 @@ constexpr std::size_t kHeaderLines = 11;
 
 std::string_view Trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
   return s;
 }
 
@@ -91,8 +92,9 @@ class Cursor {
 
   // Counts the lines of a raw byte range that was skipped (binary data), for messages.
   void CountLines(std::size_t from, std::size_t to) {
-    line_ += static_cast<std::size_t>(std::count(text_.begin() + static_cast<std::ptrdiff_t>(from),
-                                                 text_.begin() + static_cast<std::ptrdiff_t>(to), '\n'));
+    line_ +=
+        static_cast<std::size_t>(std::count(text_.begin() + static_cast<std::ptrdiff_t>(from),
+                                            text_.begin() + static_cast<std::ptrdiff_t>(to), '\n'));
   }
 
  private:
@@ -217,8 +219,10 @@ Result<Uff58Record> ParseRecord(Cursor& cur, const Context& ctx, std::string_vie
     const auto lines = ParseInt(Columns(type_line, 19, 12));
     const auto bytes = ParseInt(Columns(type_line, 31, 12));
     if (!order || (*order != 1 && *order != 2)) {
-      return ctx.At(start_line, "dataset 58b: byte ordering flag must be 1 (LSB first) or 2 "
-                                "(MSB first), got '" + std::string(Trim(Columns(type_line, 7, 6))) + "'");
+      return ctx.At(start_line,
+                    "dataset 58b: byte ordering flag must be 1 (LSB first) or 2 "
+                    "(MSB first), got '" +
+                        std::string(Trim(Columns(type_line, 7, 6))) + "'");
     }
     if (!fp || *fp != 2) {
       return ctx.At(start_line, "dataset 58b: floating-point format '" +
@@ -247,14 +251,17 @@ Result<Uff58Record> ParseRecord(Cursor& cur, const Context& ctx, std::string_vie
   const std::size_t first = start_line + 1;  // line number of record 1
   for (std::size_t i = 0; i < 5; ++i) r.id_lines[i] = std::string(Trim(h[i]));
   if (!ParseDofLine(h[5], &r)) {
-    return ctx.At(first + 5, "record 6 (DOF identification): cannot read function type, "
-                             "nodes and directions from '" + std::string(h[5]) + "'");
+    return ctx.At(first + 5,
+                  "record 6 (DOF identification): cannot read function type, "
+                  "nodes and directions from '" +
+                      std::string(h[5]) + "'");
   }
   const auto data_type = ParseInt(Columns(h[6], 0, 10));
   const auto points = ParseInt(Columns(h[6], 10, 10));
   const auto spacing = ParseInt(Columns(h[6], 20, 10));
   if (!data_type || (*data_type != 2 && *data_type != 4 && *data_type != 5 && *data_type != 6)) {
-    return ctx.At(first + 6, "record 7: ordinate data type '" + std::string(Trim(Columns(h[6], 0, 10))) +
+    return ctx.At(first + 6, "record 7: ordinate data type '" +
+                                 std::string(Trim(Columns(h[6], 0, 10))) +
                                  "' is not supported (2 real single, 4 real double, 5 complex "
                                  "single, 6 complex double)");
   }
@@ -422,15 +429,34 @@ std::string AsciiData(const Uff58Record& r, const std::vector<double>& values) {
 }  // namespace
 
 std::string UffFunctionTypeName(int function_type) {
-  static constexpr const char* kNames[] = {
-      "general or unknown", "time response", "auto spectrum", "cross spectrum",
-      "frequency response function", "transmissibility", "coherence", "auto correlation",
-      "cross correlation", "power spectral density", "energy spectral density",
-      "probability density function", "spectrum", "cumulative frequency distribution",
-      "peaks valley", "stress/cycles", "strain/cycles", "orbit", "mode indicator function",
-      "force pattern", "partial power", "partial coherence", "eigenvalue", "eigenvector",
-      "shock response spectrum", "finite impulse response filter", "multiple coherence",
-      "order function"};
+  static constexpr const char* kNames[] = {"general or unknown",
+                                           "time response",
+                                           "auto spectrum",
+                                           "cross spectrum",
+                                           "frequency response function",
+                                           "transmissibility",
+                                           "coherence",
+                                           "auto correlation",
+                                           "cross correlation",
+                                           "power spectral density",
+                                           "energy spectral density",
+                                           "probability density function",
+                                           "spectrum",
+                                           "cumulative frequency distribution",
+                                           "peaks valley",
+                                           "stress/cycles",
+                                           "strain/cycles",
+                                           "orbit",
+                                           "mode indicator function",
+                                           "force pattern",
+                                           "partial power",
+                                           "partial coherence",
+                                           "eigenvalue",
+                                           "eigenvector",
+                                           "shock response spectrum",
+                                           "finite impulse response filter",
+                                           "multiple coherence",
+                                           "order function"};
   if (function_type >= 0 && function_type < static_cast<int>(std::size(kNames))) {
     return kNames[function_type];
   }
@@ -463,8 +489,8 @@ Result<std::vector<Uff58Record>> ParseUff58(std::string_view contents, const std
   while (cur.NextLine(&line)) {
     if (Trim(line).empty()) continue;
     if (!IsDelimiter(line)) {
-      return ctx.At(cur.line(), "expected a dataset delimiter '    -1', got '" +
-                                    std::string(Trim(line)) + "'");
+      return ctx.At(cur.line(),
+                    "expected a dataset delimiter '    -1', got '" + std::string(Trim(line)) + "'");
     }
     std::string_view type_line;
     if (!cur.NextLine(&type_line)) {
@@ -473,7 +499,8 @@ Result<std::vector<Uff58Record>> ParseUff58(std::string_view contents, const std
     const std::string_view type_field = Trim(Columns(type_line, 0, 6));
     const auto type = ParseInt(type_field);
     if (!type || type_field.empty()) {
-      return ctx.At(cur.line(), "expected a dataset number, got '" + std::string(Trim(type_line)) + "'");
+      return ctx.At(cur.line(),
+                    "expected a dataset number, got '" + std::string(Trim(type_line)) + "'");
     }
     if (*type != 58) {  // not ours: skip to its closing delimiter
       bool closed = false;
@@ -483,7 +510,9 @@ Result<std::vector<Uff58Record>> ParseUff58(std::string_view contents, const std
           break;
         }
       }
-      if (!closed) return ctx.At(cur.line(), "dataset " + std::to_string(*type) + " is not closed by '    -1'");
+      if (!closed)
+        return ctx.At(cur.line(),
+                      "dataset " + std::to_string(*type) + " is not closed by '    -1'");
       continue;
     }
     auto record = ParseRecord(cur, ctx, type_line);
@@ -533,10 +562,10 @@ Status WriteUff58(const std::filesystem::path& file, std::span<const Uff58Record
       out += "    58\n";
     }
     for (const auto& id : r.id_lines) out += Pad80(id);
-    out += Fixed("%5d%10d%5d%10d %10.10s%10d%4d %10.10s%10d%4d\n", r.function_type,
-                 r.function_id, r.version, r.load_case, r.response_entity.c_str(),
-                 r.response_node, r.response_direction, r.reference_entity.c_str(),
-                 r.reference_node, r.reference_direction);
+    out += Fixed("%5d%10d%5d%10d %10.10s%10d%4d %10.10s%10d%4d\n", r.function_type, r.function_id,
+                 r.version, r.load_case, r.response_entity.c_str(), r.response_node,
+                 r.response_direction, r.reference_entity.c_str(), r.reference_node,
+                 r.reference_direction);
     out += Fixed("%10d%10zu%10d%13.5E%13.5E%13.5E\n", r.ordinate_data_type(), r.ordinate.size(),
                  r.even_abscissa ? 1 : 0, r.even_abscissa ? r.abscissa_start : 0.0,
                  r.even_abscissa ? r.abscissa_increment : 0.0, r.z_axis_value);

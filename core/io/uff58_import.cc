@@ -58,9 +58,12 @@ std::string DescribeDof(const UffDofAssignment& d) {
 
 const char* RoleKey(DofRole role) {
   switch (role) {
-    case DofRole::kActive: return "a";
-    case DofRole::kPassive: return "p";
-    case DofRole::kMeasurement: return "m";
+    case DofRole::kActive:
+      return "a";
+    case DofRole::kPassive:
+      return "p";
+    case DofRole::kMeasurement:
+      return "m";
   }
   return "?";
 }
@@ -125,8 +128,8 @@ Result<CoupledSet> ImportCoupledSet(std::span<const Uff58Record> records,
     }
     if (reference_record && !SameAbscissa(r, records[*reference_record])) {
       return Error{"abscissa mismatch: " + DescribeRecord(k, r) + " has " + DescribeAbscissa(r) +
-                   ", " + DescribeRecord(*reference_record, records[*reference_record]) +
-                   " has " + DescribeAbscissa(records[*reference_record])};
+                   ", " + DescribeRecord(*reference_record, records[*reference_record]) + " has " +
+                   DescribeAbscissa(records[*reference_record])};
     }
     if (!reference_record) reference_record = k;
     frf.emplace(key, Entry{k, resp->second * ref->second});
@@ -183,9 +186,9 @@ Result<CoupledSet> ImportCoupledSet(std::span<const Uff58Record> records,
       for (std::size_t j = 0; j < cols.size(); ++j) {
         auto it = frf.find({rows[i], cols[j]});
         if (it == frf.end()) {
-          std::string message = "missing FRF for " + block + (required ? "" : " (partly measured)") +
-                                ": response " + DescribeDof(dofs[rows[i]]) + ", reference " +
-                                DescribeDof(dofs[cols[j]]);
+          std::string message =
+              "missing FRF for " + block + (required ? "" : " (partly measured)") + ": response " +
+              DescribeDof(dofs[rows[i]]) + ", reference " + DescribeDof(dofs[cols[j]]);
           if (auto o = other.find({rows[i], cols[j]}); o != other.end()) {
             const auto& rec = records[o->second];
             message += "; " + DescribeRecord(o->second, rec) + " has function type " +
@@ -252,8 +255,8 @@ Result<TimeHistories> ExtractTimeHistories(std::span<const Uff58Record> records)
   out.samples.resize(n, static_cast<Eigen::Index>(picked.size()));
   for (std::size_t c = 0; c < picked.size(); ++c) {
     const auto& r = records[picked[c]];
-    out.channels.push_back({r.response_node, r.response_direction, r.id_lines[0],
-                            r.ordinate_axis.unit_label});
+    out.channels.push_back(
+        {r.response_node, r.response_direction, r.id_lines[0], r.ordinate_axis.unit_label});
     for (Eigen::Index i = 0; i < n; ++i) {
       out.samples(i, static_cast<Eigen::Index>(c)) = r.ordinate[static_cast<std::size_t>(i)].real();
     }

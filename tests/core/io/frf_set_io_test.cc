@@ -36,8 +36,8 @@ Eigen::MatrixXcd Block(Eigen::Index rows, Eigen::Index cols, double seed) {
   return m;
 }
 
-std::vector<Eigen::MatrixXcd> Blocks(const Eigen::VectorXd& f, Eigen::Index rows,
-                                     Eigen::Index cols, double seed) {
+std::vector<Eigen::MatrixXcd> Blocks(const Eigen::VectorXd& f, Eigen::Index rows, Eigen::Index cols,
+                                     double seed) {
   std::vector<Eigen::MatrixXcd> blocks;
   for (Eigen::Index k = 0; k < f.size(); ++k) blocks.push_back(Block(rows, cols, seed + f[k]));
   return blocks;
@@ -271,8 +271,9 @@ TEST_F(FrfSetIoTest, RejectsWrongShapeSayingExpectedAndGot) {
   const std::vector<std::complex<double>> h(4 * 3 * 2);
   ASSERT_TRUE(WriteNpy<std::complex<double>>(dir_ / "H_decoupled.npy", h, {4, 3, 2}).ok());
   const std::string e = ReadError();
-  EXPECT_TRUE(Contains(e, "H_decoupled.npy: shape (4, 3, 2) does not match the manifest: "
-                          "expected (4, 2, 3) (n_freq, n_channels, n_paths)"));
+  EXPECT_TRUE(Contains(e,
+                       "H_decoupled.npy: shape (4, 3, 2) does not match the manifest: "
+                       "expected (4, 2, 3) (n_freq, n_channels, n_paths)"));
 }
 
 TEST_F(FrfSetIoTest, RejectsPathCountThatDisagreesWithArrayColumns) {
@@ -304,7 +305,8 @@ TEST_F(FrfSetIoTest, RejectsNonIncreasingFrequencyAxisNamingTheIndex) {
   const std::vector<double> f = {10, 20.5, 20.5, 40};
   ASSERT_TRUE(WriteNpy<double>(dir_ / "frequency_hz.npy", f, {4}).ok());
   const std::string e = ReadError();
-  EXPECT_TRUE(Contains(e, "frequency_hz.npy: not strictly increasing at index 2 (20.5 Hz after 20.5 Hz)"));
+  EXPECT_TRUE(
+      Contains(e, "frequency_hz.npy: not strictly increasing at index 2 (20.5 Hz after 20.5 Hz)"));
 }
 
 TEST_F(FrfSetIoTest, RejectsNonFiniteFrequency) {
@@ -317,8 +319,8 @@ TEST_F(FrfSetIoTest, RejectsNonFiniteFrequency) {
 TEST_F(FrfSetIoTest, RejectsUnknownFormat) {
   WriteValid();
   EditManifest([](Json& j) { j["format"] = "other-format"; });
-  EXPECT_TRUE(Contains(ReadError(),
-                       "manifest.json: format: expected \"gearpath-frf-set\", got \"other-format\""));
+  EXPECT_TRUE(Contains(
+      ReadError(), "manifest.json: format: expected \"gearpath-frf-set\", got \"other-format\""));
 }
 
 TEST_F(FrfSetIoTest, RejectsUnknownFormatVersion) {
@@ -354,8 +356,9 @@ TEST_F(FrfSetIoTest, RejectsUnknownQuantity) {
 TEST_F(FrfSetIoTest, RejectsUnitThatDoesNotMatchTheQuantity) {
   WriteValid();
   EditManifest([](Json& j) { j["unit"] = "mm/s^2/N"; });
-  EXPECT_TRUE(Contains(ReadError(), "unit \"mm/s^2/N\" does not match quantity \"accelerance\" "
-                                    "(expected \"m/s^2/N\")"));
+  EXPECT_TRUE(Contains(ReadError(),
+                       "unit \"mm/s^2/N\" does not match quantity \"accelerance\" "
+                       "(expected \"m/s^2/N\")"));
 }
 
 TEST_F(FrfSetIoTest, RejectsSetWithNeitherDecoupledNorCoupled) {
@@ -379,20 +382,23 @@ TEST_F(FrfSetIoTest, RejectsBadDirectionAndDuplicatePathNames) {
 TEST_F(FrfSetIoTest, RejectsUnknownDecouplingLabel) {
   WriteValid();
   EditManifest([](Json& j) { j["decoupling"] = "eq23"; });
-  EXPECT_TRUE(Contains(ReadError(), "decoupling must be \"eq22\", \"eq24\", \"physical\" or "
-                                    "\"model\", got \"eq23\""));
+  EXPECT_TRUE(Contains(ReadError(),
+                       "decoupling must be \"eq22\", \"eq24\", \"physical\" or "
+                       "\"model\", got \"eq23\""));
 }
 
 TEST_F(FrfSetIoTest, RejectsArrayFileNamesThatLeaveTheSetDirectory) {
   WriteValid();
   EditManifest([](Json& j) { j["decoupled"]["file"] = "../H.npy"; });
-  EXPECT_TRUE(Contains(ReadError(), "key \"decoupled.file\" must name a file inside the set directory"));
+  EXPECT_TRUE(
+      Contains(ReadError(), "key \"decoupled.file\" must name a file inside the set directory"));
 }
 
 TEST_F(FrfSetIoTest, RejectsMeasurementBlocksGivenWithoutTheirPair) {
   WriteValid();
   EditManifest([](Json& j) { j["coupled"]["blocks"].erase("mp"); });
-  EXPECT_TRUE(Contains(ReadError(), "coupled.blocks.ma and coupled.blocks.mp must be given together"));
+  EXPECT_TRUE(
+      Contains(ReadError(), "coupled.blocks.ma and coupled.blocks.mp must be given together"));
 }
 
 TEST_F(FrfSetIoTest, WriterRefusesSetTheReaderWouldReject) {
@@ -432,7 +438,8 @@ TEST(FrfSetFromPython, ReadsTheSetWrittenByTheDocumentedPythonSnippet) {
     EXPECT_DOUBLE_EQ(set->decoupled.frequency_hz[k], f);
     for (Eigen::Index i = 0; i < 2; ++i) {
       for (Eigen::Index j = 0; j < 3; ++j) {
-        const Complex expected = Complex(static_cast<double>(i + 1), static_cast<double>(j + 1)) * f;
+        const Complex expected =
+            Complex(static_cast<double>(i + 1), static_cast<double>(j + 1)) * f;
         EXPECT_EQ(set->decoupled.at[static_cast<std::size_t>(k)](i, j), expected);
       }
     }

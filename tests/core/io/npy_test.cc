@@ -69,10 +69,9 @@ void ExpectRoundTrip(const fs::path& file, const std::vector<T>& values,
 
 TEST_F(NpyTest, RoundTripsEveryDtypeBitForBit) {
   const double tiny = std::numeric_limits<double>::denorm_min();
-  ExpectRoundTrip<std::complex<double>>(dir_ / "c16.npy",
-                                        {{1.0, -2.0}, {0.1, 1e-300}, {tiny, -0.0}, {3, 4},
-                                         {5, 6}, {-7.25, 8.5}},
-                                        {2, 3});
+  ExpectRoundTrip<std::complex<double>>(
+      dir_ / "c16.npy", {{1.0, -2.0}, {0.1, 1e-300}, {tiny, -0.0}, {3, 4}, {5, 6}, {-7.25, 8.5}},
+      {2, 3});
   ExpectRoundTrip<double>(dir_ / "f8.npy", {0.1, 0.2, 0.30000000000000004, -1e308}, {4});
   ExpectRoundTrip<float>(dir_ / "f4.npy", {0.1f, -3.5f, 1e-38f, 7.0f, 8.0f, 9.0f, 10.f, 11.f},
                          {2, 2, 2});
@@ -107,9 +106,8 @@ TEST_F(NpyTest, WritesHeaderThatNumpyDocumentsWithDataAlignedTo64Bytes) {
 
 TEST_F(NpyTest, ReadsFileBuiltFromHandWrittenHeaderBytes) {
   const std::vector<double> values = {1, 2, 3, 4, 5, 6};
-  const auto file = WriteRaw("hand.npy", 1,
-                             "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }",
-                             Bytes(values));
+  const auto file = WriteRaw(
+      "hand.npy", 1, "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }", Bytes(values));
   auto read = ReadNpy<double>(file);
   ASSERT_TRUE(read.ok()) << read.error();
   EXPECT_EQ(read->shape, (std::vector<std::size_t>{2, 3}));
@@ -119,9 +117,9 @@ TEST_F(NpyTest, ReadsFileBuiltFromHandWrittenHeaderBytes) {
 TEST_F(NpyTest, ReadsVersion2And3HeadersAndDoubleQuotedKeys) {
   const std::vector<std::int32_t> values = {7, -8, 9};
   for (int major : {2, 3}) {
-    const auto file = WriteRaw("v" + std::to_string(major) + ".npy", major,
-                               "{\"descr\": \"<i4\", \"fortran_order\": False, \"shape\": (3,)}",
-                               Bytes(values));
+    const auto file =
+        WriteRaw("v" + std::to_string(major) + ".npy", major,
+                 "{\"descr\": \"<i4\", \"fortran_order\": False, \"shape\": (3,)}", Bytes(values));
     auto read = ReadNpy<std::int32_t>(file);
     ASSERT_TRUE(read.ok()) << read.error();
     EXPECT_EQ(read->data, values);
@@ -134,17 +132,17 @@ TEST_F(NpyTest, ReadsVersion2And3HeadersAndDoubleQuotedKeys) {
 TEST_F(NpyTest, ReordersFortranOrderDataIntoCOrder) {
   // A 2x3 matrix a[i][j] = 10 i + j, stored column by column (Fortran order).
   const std::vector<double> fortran = {0, 10, 1, 11, 2, 12};
-  const auto file = WriteRaw("f.npy", 1,
-                             "{'descr': '<f8', 'fortran_order': True, 'shape': (2, 3), }",
-                             Bytes(fortran));
+  const auto file = WriteRaw(
+      "f.npy", 1, "{'descr': '<f8', 'fortran_order': True, 'shape': (2, 3), }", Bytes(fortran));
   auto read = ReadNpy<double>(file);
   ASSERT_TRUE(read.ok()) << read.error();
   EXPECT_EQ(read->data, (std::vector<double>{0, 1, 2, 10, 11, 12}));
 }
 
 TEST_F(NpyTest, RejectsBadMagicNamingTheFile) {
-  const auto file = WriteRaw("bad.npy", 1, "{'descr': '<f8', 'fortran_order': False, 'shape': (1,), }",
-                             Bytes(std::vector<double>{1.0}), "\x93NUMPZ");
+  const auto file =
+      WriteRaw("bad.npy", 1, "{'descr': '<f8', 'fortran_order': False, 'shape': (1,), }",
+               Bytes(std::vector<double>{1.0}), "\x93NUMPZ");
   auto read = ReadNpy<double>(file);
   ASSERT_FALSE(read.ok());
   EXPECT_TRUE(Contains(read.error(), file.string()));
@@ -152,8 +150,9 @@ TEST_F(NpyTest, RejectsBadMagicNamingTheFile) {
 }
 
 TEST_F(NpyTest, RejectsUnsupportedDtypeSayingWhichWasExpected) {
-  const auto file = WriteRaw("f8.npy", 1, "{'descr': '<f8', 'fortran_order': False, 'shape': (1,), }",
-                             Bytes(std::vector<double>{1.0}));
+  const auto file =
+      WriteRaw("f8.npy", 1, "{'descr': '<f8', 'fortran_order': False, 'shape': (1,), }",
+               Bytes(std::vector<double>{1.0}));
   auto read = ReadNpy<std::complex<double>>(file);
   ASSERT_FALSE(read.ok());
   EXPECT_TRUE(Contains(read.error(), file.string()));
@@ -161,17 +160,18 @@ TEST_F(NpyTest, RejectsUnsupportedDtypeSayingWhichWasExpected) {
 }
 
 TEST_F(NpyTest, RejectsBigEndianData) {
-  const auto file = WriteRaw("be.npy", 1, "{'descr': '>f8', 'fortran_order': False, 'shape': (1,), }",
-                             Bytes(std::vector<double>{1.0}));
+  const auto file =
+      WriteRaw("be.npy", 1, "{'descr': '>f8', 'fortran_order': False, 'shape': (1,), }",
+               Bytes(std::vector<double>{1.0}));
   auto read = ReadNpy<double>(file);
   ASSERT_FALSE(read.ok());
   EXPECT_TRUE(Contains(read.error(), "unsupported dtype '>f8' (expected float64"));
 }
 
 TEST_F(NpyTest, RejectsTruncatedDataStatingExpectedAndActualBytes) {
-  const auto file = WriteRaw("short.npy", 1,
-                             "{'descr': '<c16', 'fortran_order': False, 'shape': (2, 3), }",
-                             std::string(90, '\0'));
+  const auto file =
+      WriteRaw("short.npy", 1, "{'descr': '<c16', 'fortran_order': False, 'shape': (2, 3), }",
+               std::string(90, '\0'));
   auto read = ReadNpy<std::complex<double>>(file);
   ASSERT_FALSE(read.ok());
   EXPECT_TRUE(Contains(read.error(), file.string()));
@@ -180,8 +180,9 @@ TEST_F(NpyTest, RejectsTruncatedDataStatingExpectedAndActualBytes) {
 }
 
 TEST_F(NpyTest, RejectsTrailingBytesAfterTheData) {
-  const auto file = WriteRaw("long.npy", 1, "{'descr': '<f8', 'fortran_order': False, 'shape': (1,), }",
-                             std::string(9, '\0'));
+  const auto file =
+      WriteRaw("long.npy", 1, "{'descr': '<f8', 'fortran_order': False, 'shape': (1,), }",
+               std::string(9, '\0'));
   auto read = ReadNpy<double>(file);
   ASSERT_FALSE(read.ok());
   EXPECT_TRUE(Contains(read.error(), "1 trailing bytes"));

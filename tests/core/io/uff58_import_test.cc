@@ -20,10 +20,11 @@ using C = std::complex<double>;
 constexpr int kBins = 6;
 
 // DOFs listed with roles interleaved, to check that each role keeps the caller's order.
-const std::vector<UffDofAssignment> kDofs = {
-    {"a1", 1, 1, DofRole::kActive},      {"p1", 2, 1, DofRole::kPassive},
-    {"a2", 1, 2, DofRole::kActive},      {"m1", 9, 2, DofRole::kMeasurement},
-    {"p2", 3, 3, DofRole::kPassive}};
+const std::vector<UffDofAssignment> kDofs = {{"a1", 1, 1, DofRole::kActive},
+                                             {"p1", 2, 1, DofRole::kPassive},
+                                             {"a2", 1, 2, DofRole::kActive},
+                                             {"m1", 9, 2, DofRole::kMeasurement},
+                                             {"p2", 3, 3, DofRole::kPassive}};
 constexpr std::size_t kA1 = 0, kP1 = 1, kA2 = 2, kM1 = 3, kP2 = 4;
 
 // The true FRF between two DOFs (indices into kDofs), positive directions: a value that says
@@ -56,7 +57,8 @@ std::vector<Uff58Record> MeasuredRecords() {
   std::vector<Uff58Record> records;
   const std::size_t a[] = {kA1, kA2}, p[] = {kP1, kP2};
   for (std::size_t i : a) {
-    for (std::size_t j : a) records.push_back(Frf(i, j, i == kA2 && j == kA1, i == kA2 && j == kA1));
+    for (std::size_t j : a)
+      records.push_back(Frf(i, j, i == kA2 && j == kA1, i == kA2 && j == kA1));
   }
   for (std::size_t i : p) {
     for (std::size_t j : a) records.push_back(Frf(i, j, i == kP2 && j == kA1));
@@ -172,8 +174,9 @@ TEST(ImportCoupledSet, RejectsNonFrfRecordWhereAnFrfIsExpected) {
   auto set = ImportCoupledSet(records, kDofs);
   ASSERT_FALSE(set.ok());
   EXPECT_TRUE(Contains(set.error(), "missing FRF for H_mp: response m1 (node 9 +Y), reference p2"));
-  EXPECT_TRUE(Contains(set.error(), "has function type 3 (cross spectrum), expected 4 "
-                                    "(frequency response function)"));
+  EXPECT_TRUE(Contains(set.error(),
+                       "has function type 3 (cross spectrum), expected 4 "
+                       "(frequency response function)"));
 }
 
 TEST(ImportCoupledSet, RejectsPartlyMeasuredAp) {
@@ -190,9 +193,10 @@ TEST(ImportCoupledSet, RejectsRecordsOnDifferentAbscissae) {
   records[k].abscissa_increment = 5.0001;
   auto set = ImportCoupledSet(records, kDofs);
   ASSERT_FALSE(set.ok());
-  EXPECT_TRUE(Contains(set.error(), "abscissa mismatch: record " + std::to_string(k) +
-                                        " (response node 2 +X, reference node 2 +X) has 6 points from 10 "
-                                        "step 5.0001, record 0"));
+  EXPECT_TRUE(
+      Contains(set.error(), "abscissa mismatch: record " + std::to_string(k) +
+                                " (response node 2 +X, reference node 2 +X) has 6 points from 10 "
+                                "step 5.0001, record 0"));
 }
 
 TEST(ImportCoupledSet, RejectsTwoFrfsForOnePair) {
@@ -227,8 +231,8 @@ TEST(ImportCoupledSet, GivesTheSameBlocksAfterAUffFileRoundTrip) {
   const auto records = MeasuredRecords();
   auto direct = ImportCoupledSet(records, kDofs);
   ASSERT_TRUE(direct.ok()) << direct.error();
-  const fs::path file = fs::temp_directory_path() /
-                        ("gearpath_uff_import_" + std::to_string(::getpid()) + ".unv");
+  const fs::path file =
+      fs::temp_directory_path() / ("gearpath_uff_import_" + std::to_string(::getpid()) + ".unv");
   ASSERT_TRUE(WriteUff58(file, records, UffEncoding::kBinary).ok());
   auto read = ReadUff58(file);
   fs::remove(file);
@@ -261,8 +265,8 @@ Uff58Record TimeRecord(int node, int direction, int samples, double dt) {
 TEST(ExtractTimeHistories, ReturnsChannelsOnOneSampleClockFromAUffFile) {
   const std::vector<Uff58Record> records = {TimeRecord(5, 1, 8, 1e-3), Frf(kA1, kA1),
                                             TimeRecord(6, -3, 8, 1e-3)};
-  const fs::path file = fs::temp_directory_path() /
-                        ("gearpath_uff_time_" + std::to_string(::getpid()) + ".unv");
+  const fs::path file =
+      fs::temp_directory_path() / ("gearpath_uff_time_" + std::to_string(::getpid()) + ".unv");
   ASSERT_TRUE(WriteUff58(file, records, UffEncoding::kAscii).ok());
   auto read = ReadUff58(file);
   fs::remove(file);
@@ -288,8 +292,9 @@ TEST(ExtractTimeHistories, RejectsChannelsOfDifferentLengthOrRateAndComplexOrNoD
   std::vector<Uff58Record> records = {TimeRecord(5, 1, 8, 1e-3), TimeRecord(6, 1, 9, 1e-3)};
   auto th = ExtractTimeHistories(records);
   ASSERT_FALSE(th.ok());
-  EXPECT_TRUE(Contains(th.error(), "time base mismatch: record 1 (response node 6 +X, reference node 0 scalar) "
-                                   "has 9 points"));
+  EXPECT_TRUE(Contains(th.error(),
+                       "time base mismatch: record 1 (response node 6 +X, reference node 0 scalar) "
+                       "has 9 points"));
   records[1] = TimeRecord(6, 1, 8, 2e-3);
   EXPECT_FALSE(ExtractTimeHistories(records).ok());
   records[1] = TimeRecord(6, 1, 8, 1e-3);

@@ -270,10 +270,12 @@ TEST_F(Uff58Test, RejectsTruncatedAsciiDataNamingFileLineAndCounts) {
 }
 
 TEST_F(Uff58Test, RejectsUnsupportedOrdinateDataType) {
-  const std::string text = HandSample("         6         4         1", "         3         4         1");
+  const std::string text =
+      HandSample("         6         4         1", "         3         4         1");
   auto read = ParseUff58(text, "t.unv");
   ASSERT_FALSE(read.ok());
-  EXPECT_TRUE(Contains(read.error(), "t.unv:15: record 7: ordinate data type '3' is not supported"));
+  EXPECT_TRUE(
+      Contains(read.error(), "t.unv:15: record 7: ordinate data type '3' is not supported"));
 }
 
 TEST_F(Uff58Test, RejectsGarbageInTheData) {
@@ -299,8 +301,9 @@ TEST_F(Uff58Test, RejectsBinaryRecordsWhoseByteCountDisagrees) {
   wrong.replace(wrong.find("         112"), 12, "         120");
   auto read = ParseUff58(wrong, "b.unv");
   ASSERT_FALSE(read.ok());
-  EXPECT_TRUE(Contains(read.error(), "b.unv:2: dataset 58b: header announces 120 data bytes but "
-                                     "record 7 (7 points, data type 6) needs 112"));
+  EXPECT_TRUE(Contains(read.error(),
+                       "b.unv:2: dataset 58b: header announces 120 data bytes but "
+                       "record 7 (7 points, data type 6) needs 112"));
   // Cut the file inside the binary data.
   auto cut = ParseUff58(bytes.substr(0, bytes.size() - 60), "b.unv");
   ASSERT_FALSE(cut.ok());
@@ -334,7 +337,8 @@ TEST_F(Uff58Test, WriterRejectsInconsistentRecords) {
   std::vector<Uff58Record> records = {r};
   Status st = WriteUff58(dir_ / "w.unv", records, UffEncoding::kAscii);
   ASSERT_FALSE(st.ok());
-  EXPECT_TRUE(Contains(st.error(), "record 0: uneven abscissa has 6 values for 7 ordinate samples"));
+  EXPECT_TRUE(
+      Contains(st.error(), "record 0: uneven abscissa has 6 values for 7 ordinate samples"));
   records[0] = MakeRecord(true, false, true, 1);
   records[0].ordinate[2] = {1.0, 2.0};
   st = WriteUff58(dir_ / "w.unv", records, UffEncoding::kAscii);
