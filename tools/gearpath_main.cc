@@ -9,6 +9,10 @@ int main(int argc, char** argv) {
   int exit_code = gearpath::tools::kExitOk;
   // Subcommands register here, one line each (validate lands with core/inverse's tables).
   gearpath::tools::AddMonitorCommand(app, exit_code);
+  gearpath::tools::AddRecordCommand(app, exit_code);
+  gearpath::tools::AddReplayCommand(app, exit_code);
+  gearpath::tools::AddDecoupleCommand(app, exit_code);
+  gearpath::tools::AddInspectCommand(app, exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

@@ -28,6 +28,22 @@ gearpath_SpeedSource WireSpeedSource(SpeedSource source) {
   return gearpath_SPEED_UNKNOWN;
 }
 
+Axis CoreAxis(gearpath_Axis axis) {
+  switch (axis) {
+    case gearpath_AXIS_Y: return Axis::kY;
+    case gearpath_AXIS_Z: return Axis::kZ;
+    default: return Axis::kX;
+  }
+}
+
+SpeedSource CoreSpeedSource(gearpath_SpeedSource source) {
+  switch (source) {
+    case gearpath_SPEED_ACQUISITION_TACHOMETER: return SpeedSource::kAcquisition;
+    case gearpath_SPEED_OTHER: return SpeedSource::kConfiguration;
+    default: return SpeedSource::kUnknown;
+  }
+}
+
 }  // namespace
 
 Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noexcept {
@@ -77,6 +93,29 @@ Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noex
   }
   if (!Assign(out.samples, block.samples)) return Error{"out of memory for the samples"};
   return Status::Ok();
+}
+
+AccelBlockView ViewOfWireBlock(const gearpath_AccelBlock& sample,
+                               std::vector<ChannelInfo>& channels) {
+  const auto wire = View(sample.channels);
+  channels.resize(wire.size());
+  for (std::size_t c = 0; c < wire.size(); ++c) {
+    channels[c].sensor.assign(GetString(wire[c].sensor_id));
+    channels[c].axis = CoreAxis(wire[c].axis);
+    channels[c].unit.assign(GetString(wire[c].unit));
+    channels[c].sensitivity = wire[c].sensitivity_mv_per_unit;
+  }
+  AccelBlockView view;
+  view.machine_id = GetString(sample.machine_id);
+  view.sequence = sample.sequence_number;
+  view.t0_ns = sample.t0_ns;
+  view.sample_rate_hz = sample.sample_rate_hz;
+  view.speed_hz = sample.speed_hz;
+  view.speed_source = CoreSpeedSource(sample.speed_source);
+  view.channels = channels;
+  view.samples_per_channel = sample.samples_per_channel;
+  view.samples = View(sample.samples);
+  return view;
 }
 
 }  // namespace gearpath::dds

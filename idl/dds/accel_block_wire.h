@@ -3,6 +3,8 @@
 // so a publisher refuses a block the daemon could never receive instead of truncating it.
 #pragma once
 
+#include <vector>
+
 #include "core/common/accel_block.h"
 #include "core/common/result.h"
 #include "idl/gearpath.h"
@@ -13,5 +15,13 @@ namespace gearpath::dds {
 // grown). Fails, leaving `out` unspecified, when an id, unit or sequence exceeds its IDL bound
 // or the samples do not match channels x samples_per_channel.
 Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noexcept;
+
+// The inverse, for subscribers outside the daemon (`gearpath record`): a view of `sample`'s
+// samples (no copy; valid while `sample` and `channels` live) with the channel descriptions
+// decoded into `channels` (reused, so no allocation once it has grown). Speed sources map so
+// that FillWireBlock(ViewOfWireBlock(w)) == w field for field: TACHOMETER <-> kAcquisition,
+// OTHER <-> kConfiguration (a speed from outside the acquisition), UNKNOWN <-> kUnknown.
+AccelBlockView ViewOfWireBlock(const gearpath_AccelBlock& sample,
+                               std::vector<ChannelInfo>& channels);
 
 }  // namespace gearpath::dds

@@ -14,5 +14,9 @@ inline constexpr int kExitBadInput = 2;
 
 void AddValidateCommand(CLI::App& app, int& exit_code);
 void AddMonitorCommand(CLI::App& app, int& exit_code);
+void AddRecordCommand(CLI::App& app, int& exit_code);
+void AddReplayCommand(CLI::App& app, int& exit_code);
+void AddDecoupleCommand(CLI::App& app, int& exit_code);
+void AddInspectCommand(CLI::App& app, int& exit_code);
 
 }  // namespace gearpath::tools
