@@ -10,9 +10,10 @@ namespace gearpath {
 Result<double> Frac(const Eigen::VectorXd& frequency_hz, const Eigen::VectorXcd& a,
                     const Eigen::VectorXcd& b, double f_lo_hz, double f_hi_hz) {
   if (a.size() != frequency_hz.size() || b.size() != frequency_hz.size()) {
-    return Error{fmt::format("FRAC: size mismatch: frequency axis has {} bins, first FRF {}, "
-                             "second FRF {}",
-                             frequency_hz.size(), a.size(), b.size())};
+    return Error{
+        fmt::format("FRAC: size mismatch: frequency axis has {} bins, first FRF {}, "
+                    "second FRF {}",
+                    frequency_hz.size(), a.size(), b.size())};
   }
   if (!std::isfinite(f_lo_hz) || !std::isfinite(f_hi_hz) || f_lo_hz > f_hi_hz) {
     return Error{fmt::format("FRAC: band [{}, {}] Hz is not a finite interval with f_lo <= f_hi",
@@ -25,8 +26,8 @@ Result<double> Frac(const Eigen::VectorXd& frequency_hz, const Eigen::VectorXcd&
   for (Eigen::Index j = 0; j < frequency_hz.size(); ++j) {
     const double f = frequency_hz[j];
     if (!(f >= f_lo_hz && f <= f_hi_hz)) continue;
-    if (!std::isfinite(a[j].real()) || !std::isfinite(a[j].imag()) ||
-        !std::isfinite(b[j].real()) || !std::isfinite(b[j].imag())) {
+    if (!std::isfinite(a[j].real()) || !std::isfinite(a[j].imag()) || !std::isfinite(b[j].real()) ||
+        !std::isfinite(b[j].imag())) {
       return Error{fmt::format("FRAC: non-finite FRF value at {} Hz (bin {})", f, j)};
     }
     cross += std::conj(a[j]) * b[j];
@@ -35,8 +36,8 @@ Result<double> Frac(const Eigen::VectorXd& frequency_hz, const Eigen::VectorXcd&
     ++count;
   }
   if (count == 0) {
-    return Error{fmt::format("FRAC: no frequency bin lies in the band [{}, {}] Hz", f_lo_hz,
-                             f_hi_hz)};
+    return Error{
+        fmt::format("FRAC: no frequency bin lies in the band [{}, {}] Hz", f_lo_hz, f_hi_hz)};
   }
   if (energy_a == 0.0 || energy_b == 0.0) {
     return Error{fmt::format("FRAC: the {} FRF is zero over [{}, {}] Hz, so its shape is undefined",

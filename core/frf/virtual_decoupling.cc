@@ -22,8 +22,8 @@ const char* EquationName(Target target) {
 Status CheckBlock(const std::vector<Eigen::MatrixXcd>& block, const char* name, Eigen::Index bins,
                   Eigen::Index rows, Eigen::Index cols) {
   if (static_cast<Eigen::Index>(block.size()) != bins) {
-    return Error{fmt::format("block H_{} has {} bins, the frequency axis has {}", name,
-                             block.size(), bins)};
+    return Error{
+        fmt::format("block H_{} has {} bins, the frequency axis has {}", name, block.size(), bins)};
   }
   for (std::size_t k = 0; k < block.size(); ++k) {
     if (block[k].rows() != rows || block[k].cols() != cols) {
@@ -41,10 +41,12 @@ Status CheckBlocks(const CoupledBlocks& b, Target target) {
   const Eigen::Index bins = b.bins();
   if (bins == 0) return Error{"the coupled blocks have no frequency bins"};
   for (Eigen::Index k = 0; k < bins; ++k) {
-    if (!std::isfinite(b.frequency_hz[k]) || (k > 0 && !(b.frequency_hz[k] > b.frequency_hz[k - 1]))) {
-      return Error{fmt::format("frequency axis: bin {} ({} Hz) is not finite or not above the "
-                               "previous bin",
-                               k, b.frequency_hz[k])};
+    if (!std::isfinite(b.frequency_hz[k]) ||
+        (k > 0 && !(b.frequency_hz[k] > b.frequency_hz[k - 1]))) {
+      return Error{
+          fmt::format("frequency axis: bin {} ({} Hz) is not finite or not above the "
+                      "previous bin",
+                      k, b.frequency_hz[k])};
     }
   }
   if (b.aa.empty()) return Error{"block H_aa is missing"};
@@ -94,12 +96,12 @@ Result<VirtualDecouplingResult> Decouple(const CoupledBlocks& b, Target target,
 
   for (Eigen::Index k = 0; k < bins; ++k) {
     const Eigen::MatrixXcd d = b.pa[k] - b.aa[k];
-    const Eigen::MatrixXcd rhs =
-        b.has_ap() ? Eigen::MatrixXcd(b.pp[k] - b.ap[k]) : Eigen::MatrixXcd(b.pp[k] - b.pa[k].transpose());
+    const Eigen::MatrixXcd rhs = b.has_ap() ? Eigen::MatrixXcd(b.pp[k] - b.ap[k])
+                                            : Eigen::MatrixXcd(b.pp[k] - b.pa[k].transpose());
     const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(d, Eigen::ComputeFullU | Eigen::ComputeFullV);
     const Eigen::VectorXd& sigma = svd.singularValues();
-    const double cond = sigma[n - 1] > 0.0 ? sigma[0] / sigma[n - 1]
-                                           : std::numeric_limits<double>::infinity();
+    const double cond =
+        sigma[n - 1] > 0.0 ? sigma[0] / sigma[n - 1] : std::numeric_limits<double>::infinity();
     report.condition_number[k] = cond;
     if (k == 0 || cond > report.worst_condition_number) {
       report.worst_condition_number = cond;

@@ -4,7 +4,8 @@
 //   Eq. 22 (responses at the housing interface p):
 //     H_d,pp = H_pp - H_pa (H_pa - H_aa)^-1 (H_pp - H_ap)
 //   Eq. 24 (responses at housing measurement points m):
-//     H_d,mp = H_mp - H_ma (H_aa - H_pa)^-1 (H_ap - H_pp) = H_mp - H_ma (H_pa - H_aa)^-1 (H_pp - H_ap)
+//     H_d,mp = H_mp - H_ma (H_aa - H_pa)^-1 (H_ap - H_pp) = H_mp - H_ma (H_pa - H_aa)^-1 (H_pp -
+//     H_ap)
 //
 // Why it is exact: if the rotor side (a) and the housing (p, m) are joined only through links
 // between a and p (any link dynamic stiffness L', e.g. bearings k + j w c), the housing rows of

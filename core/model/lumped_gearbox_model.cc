@@ -20,15 +20,16 @@ bool IsFinite(double v) { return std::isfinite(v); }
 Status CheckPerRotor(const std::vector<double>& values, int rotors, const char* field,
                      bool strictly_positive) {
   if (static_cast<int>(values.size()) != rotors) {
-    return Error{fmt::format("gearbox parameters: {} has {} entries, expected {} (one per rotor "
-                             "= stages + 1)",
-                             field, values.size(), rotors)};
+    return Error{
+        fmt::format("gearbox parameters: {} has {} entries, expected {} (one per rotor "
+                    "= stages + 1)",
+                    field, values.size(), rotors)};
   }
   for (std::size_t i = 0; i < values.size(); ++i) {
     const double v = values[i];
     if (!IsFinite(v) || v < 0.0 || (strictly_positive && v == 0.0)) {
-      return Error{fmt::format("gearbox parameters: {}[{}] = {} must be finite and {}", field, i,
-                               v, strictly_positive ? "> 0" : ">= 0")};
+      return Error{fmt::format("gearbox parameters: {}[{}] = {} must be finite and {}", field, i, v,
+                               strictly_positive ? "> 0" : ">= 0")};
     }
   }
   return Status::Ok();
@@ -117,7 +118,8 @@ Status ValidateGrid(const Eigen::VectorXd& f) {
   if (f.size() == 0) return Error{"frequency grid is empty"};
   for (Eigen::Index k = 0; k < f.size(); ++k) {
     if (!IsFinite(f[k]) || f[k] < 0.0) {
-      return Error{fmt::format("frequency grid: bin {} is {} Hz, must be finite and >= 0", k, f[k])};
+      return Error{
+          fmt::format("frequency grid: bin {} is {} Hz, must be finite and >= 0", k, f[k])};
     }
     if (k > 0 && !(f[k] > f[k - 1])) {
       return Error{fmt::format(
@@ -238,10 +240,8 @@ void LumpedGearboxModel::Assemble() {
     mesh.contact_ratio = (std::sqrt(ra1 * ra1 - rb1 * rb1) + std::sqrt(ra2 * ra2 - rb2 * rb2) -
                           (r1 + r2) * std::sin(alpha)) /
                          (std::numbers::pi * p.module_m * cos_alpha);
-    mesh.stiffness_n_per_m =
-        p.stages[s].mesh_stiffness_n_per_m.value_or(p.single_tooth_stiffness_n_per_m2 *
-                                                    (0.75 * mesh.contact_ratio + 0.25) *
-                                                    p.face_width_m);
+    mesh.stiffness_n_per_m = p.stages[s].mesh_stiffness_n_per_m.value_or(
+        p.single_tooth_stiffness_n_per_m2 * (0.75 * mesh.contact_ratio + 0.25) * p.face_width_m);
     const double m1 = rotors_[s].inertia_kg_m2 / (rb1 * rb1);
     const double m2 = rotors_[s + 1].inertia_kg_m2 / (rb2 * rb2);
     mesh.equivalent_mass_kg = m1 * m2 / (m1 + m2);
@@ -449,9 +449,10 @@ Result<Eigen::VectorXcd> LumpedGearboxModel::MeshForce(
     double frequency_hz, const Eigen::VectorXcd& transmission_error) const {
   if (Status s = ValidateFrequency(frequency_hz); !s) return Error{"mesh force: " + s.error()};
   if (transmission_error.size() != stage_count()) {
-    return Error{fmt::format("mesh force: transmission_error has {} entries, expected {} (one "
-                             "per stage)",
-                             transmission_error.size(), stage_count())};
+    return Error{
+        fmt::format("mesh force: transmission_error has {} entries, expected {} (one "
+                    "per stage)",
+                    transmission_error.size(), stage_count())};
   }
   return MeshForceAt(kTwoPi * frequency_hz, transmission_error);
 }
@@ -475,8 +476,8 @@ ForcedResponse LumpedGearboxModel::RespondAt(double omega,
   return response;
 }
 
-Result<ForcedResponse> LumpedGearboxModel::Respond(double frequency_hz,
-                                                   const Eigen::VectorXcd& generalized_force) const {
+Result<ForcedResponse> LumpedGearboxModel::Respond(
+    double frequency_hz, const Eigen::VectorXcd& generalized_force) const {
   if (Status s = ValidateFrequency(frequency_hz); !s) return Error{"forced response: " + s.error()};
   if (generalized_force.size() != dof_count()) {
     return Error{fmt::format("forced response: generalized_force has {} entries, expected {}",
@@ -492,8 +493,9 @@ Result<ForcedResponse> LumpedGearboxModel::Respond(double frequency_hz,
     const double along_rigid = modal.norm();
     const double scale = scaled.norm();
     if (along_rigid > 1e-9 * scale) {
-      return Error{"forced response: the static (0 Hz) load drives the free rotation of the gear "
-                   "train (a net torque nothing reacts), so it has no static equilibrium"};
+      return Error{
+          "forced response: the static (0 Hz) load drives the free rotation of the gear "
+          "train (a net torque nothing reacts), so it has no static equilibrium"};
     }
   }
   return RespondAt(kTwoPi * frequency_hz, generalized_force);

@@ -61,7 +61,7 @@ struct GearStage {
 };
 
 struct GearboxParameters {
-  std::vector<GearStage> stages;                  // N >= 1
+  std::vector<GearStage> stages;  // N >= 1
   // Per rotor / per seat, N + 1 entries each (seed: k14, k25, k36; c14, ...; M4, M5, M6; ...).
   std::vector<double> bearing_stiffness_n_per_m;  // rotor i <-> seat i, > 0
   std::vector<double> bearing_damping_ns_per_m;   // >= 0
@@ -71,9 +71,9 @@ struct GearboxParameters {
   // Optional torsional spring of each rotor to ground (motor / load couplings), N + 1 entries
   // or empty (= none, the seed's model: the gear train then has one free rotation mode).
   std::vector<double> torsional_stiffness_nm_per_rad;
-  double housing_mass_kg = 0.0;              // > 0 (seed M7)
-  double ground_stiffness_n_per_m = 0.0;     // >= 0 (seed k07)
-  double ground_damping_ns_per_m = 0.0;      // >= 0 (seed c07)
+  double housing_mass_kg = 0.0;           // > 0 (seed M7)
+  double ground_stiffness_n_per_m = 0.0;  // >= 0 (seed k07)
+  double ground_damping_ns_per_m = 0.0;   // >= 0 (seed c07)
   // Gear geometry and material (one module for the whole train, as in Table 1).
   double module_m = 3e-3;
   double face_width_m = 16e-3;
@@ -81,7 +81,7 @@ struct GearboxParameters {
   double addendum_coefficient = 1.0;
   double density_kg_per_m3 = 7850.0;
   double shaft_radius_m = 24e-3;
-  double shaft_length_m = 0.0;               // 0 = gears only (Table 1 has no shaft length)
+  double shaft_length_m = 0.0;  // 0 = gears only (Table 1 has no shaft length)
   double mesh_damping_ratio = 0.02;
   double single_tooth_stiffness_n_per_m2 = 14e9;  // c' = 14 N/(mm um) = 14e9 N/m^2
 };
@@ -103,7 +103,7 @@ struct RotorProperties {
 struct MeshProperties {
   double base_radius_driver_m = 0.0;
   double base_radius_driven_m = 0.0;
-  double contact_ratio = 0.0;        // transverse contact ratio eps_alpha
+  double contact_ratio = 0.0;  // transverse contact ratio eps_alpha
   double stiffness_n_per_m = 0.0;
   double equivalent_mass_kg = 0.0;
   double damping_ns_per_m = 0.0;
@@ -111,8 +111,8 @@ struct MeshProperties {
 
 // Response to a harmonic generalized force at one frequency.
 struct ForcedResponse {
-  Eigen::VectorXcd acceleration;  // all DOFs, m/s^2 (rad/s^2 for rotations)
-  Eigen::VectorXcd bearing_force; // N + 1, force of bearing i on seat i, N (seed Eq. 44)
+  Eigen::VectorXcd acceleration;   // all DOFs, m/s^2 (rad/s^2 for rotations)
+  Eigen::VectorXcd bearing_force;  // N + 1, force of bearing i on seat i, N (seed Eq. 44)
 };
 
 // Transfer from mesh transmission error (one column per stage, m) to the housing, on a grid.
@@ -216,8 +216,8 @@ class LumpedGearboxModel {
   Eigen::MatrixXd mass_, damping_, stiffness_;
   Eigen::MatrixXd housing_mass_, housing_damping_, housing_stiffness_;
   Eigen::VectorXd natural_frequencies_hz_;
-  Eigen::MatrixXd rigid_modes_;        // mass-normalised rigid-body modes (columns)
-  Eigen::MatrixXd static_flexibility_; // sum over elastic modes of phi phi^T / w_n^2
+  Eigen::MatrixXd rigid_modes_;         // mass-normalised rigid-body modes (columns)
+  Eigen::MatrixXd static_flexibility_;  // sum over elastic modes of phi phi^T / w_n^2
 };
 
 }  // namespace gearpath

@@ -20,7 +20,8 @@ LumpedGearboxModel Table1Model() {
 // Three stages, masses and stiffnesses unlike Table 1.
 GearboxParameters ThreeStageParameters() {
   GearboxParameters p = Table1Parameters();
-  p.stages = {GearStage{21, 55, std::nullopt}, GearStage{25, 47, 4e8}, GearStage{30, 61, std::nullopt}};
+  p.stages = {GearStage{21, 55, std::nullopt}, GearStage{25, 47, 4e8},
+              GearStage{30, 61, std::nullopt}};
   p.bearing_stiffness_n_per_m = {2e7, 5e7, 8e7, 3e7};
   p.bearing_damping_ns_per_m = {5e3, 2e3, 1e4, 7e3};
   p.seat_mass_kg = {1.5, 2.5, 0.8, 4.0};
@@ -111,7 +112,7 @@ TEST(LumpedGearboxModel, AssemblesSeedStiffnessMatrixFromMeshEnergy) {
   EXPECT_NEAR(k(0, 3), rb2 * k1, tol);
   EXPECT_NEAR(k(0, 6), -1e7, tol);
   EXPECT_NEAR(k(1, 1), rb1 * rb1 * k1, tol);
-  EXPECT_NEAR(k(2, 1), -rb1 * k1, tol);  // printed as +rb1 k1 in the seed
+  EXPECT_NEAR(k(2, 1), -rb1 * k1, tol);      // printed as +rb1 k1 in the seed
   EXPECT_NEAR(k(2, 2), k1 + k2 + 1e7, tol);  // seed omits k25
   EXPECT_NEAR(k(2, 3), -rb2 * k1 + rb3 * k2, tol);
   EXPECT_NEAR(k(3, 3), rb2 * rb2 * k1 + rb3 * rb3 * k2, tol);
@@ -155,7 +156,8 @@ TEST(LumpedGearboxModel, HousingAloneMatchesSeedEq7) {
       -1e3, -1e3, -1e3, 4e3;
   EXPECT_TRUE(model.housing_stiffness().isApprox(expected_k, 1e-14));
   EXPECT_TRUE(model.housing_damping().isApprox(expected_c, 1e-14));
-  EXPECT_TRUE(model.housing_mass().isApprox(Eigen::Vector4d(1, 2, 3, 23.5).asDiagonal().toDenseMatrix()));
+  EXPECT_TRUE(
+      model.housing_mass().isApprox(Eigen::Vector4d(1, 2, 3, 23.5).asDiagonal().toDenseMatrix()));
 }
 
 TEST(LumpedGearboxModel, StaticLimitOfReceptanceIsTheInverseStiffness) {
