@@ -5,6 +5,7 @@
 #include <random>
 #include <vector>
 
+#include "core/model/lumped_gearbox_model.h"
 
 namespace gearpath {
 namespace {
@@ -133,6 +134,47 @@ TEST(PathContributionsTest, ZeroForcesGiveZeroSharesAndNoDominantPath) {
   ASSERT_EQ(pc.Energy(0, 4, -1, e), ContributionStatus::kOk);
   EXPECT_EQ(e.share, Eigen::VectorXd::Zero(3));
   EXPECT_EQ(e.dominant_path, -1);
+}
+
+TEST(PathContributionsTest, ContributionsOfTheTable1ModelReproduceTheCoupledSeatResponse) {
+  // Physical identity on the lumped model (seed Eqs. 6, 7, 45): the seat response of the
+  // coupled gearbox driven by mesh TE, H_coupled g, equals the housing-alone FRF H_d,pp times
+  // the bearing forces. Both FRFs come from the model's accelerance functions (one sign
+  // convention), the forces from its forced response.
+  Result<LumpedGearboxModel> model = LumpedGearboxModel::Create(Table1Parameters());
+  ASSERT_TRUE(model.ok()) << model.error();
+  Eigen::VectorXd freq = Eigen::VectorXd::LinSpaced(200, 5.0, 3980.0);
+  Result<FrfMatrix> hpp = model->PhysicalDecoupledPp(freq);
+  ASSERT_TRUE(hpp.ok()) << hpp.error();
+  const Eigen::Index seats = model->rotor_count();
+  Eigen::MatrixXcd forces(seats, freq.size());
+  Eigen::MatrixXcd seat_response(seats, freq.size());
+  Eigen::VectorXcd te(model->stage_count());
+  te << Complex(1e-6, 0.0), Complex(0.2e-6, -0.3e-6);
+  for (Eigen::Index k = 0; k < freq.size(); ++k) {
+    Result<ForcedResponse> r = model->RespondToTransmissionError(freq(k), te);
+    Result<Eigen::MatrixXcd> h = model->Accelerance(freq(k));
+    Result<Eigen::VectorXcd> g = model->MeshForce(freq(k), te);
+    ASSERT_TRUE(r.ok() && h.ok() && g.ok());
+    forces.col(k) = r->bearing_force;
+    const Eigen::VectorXcd x = *h * *g;
+    for (Eigen::Index s = 0; s < seats; ++s) {
+      seat_response(s, k) = x(model->SeatDof(static_cast<int>(s)));
+    }
+  }
+  PathContributions pc = MakeContributions(seats, seats, freq.size());
+  ASSERT_EQ(pc.Compute(hpp->at, forces), ContributionStatus::kOk);
+  for (Eigen::Index k = 0; k < freq.size(); ++k) {
+    for (Eigen::Index c = 0; c < seats; ++c) {
+      EXPECT_LE(std::abs(pc.Response(c)[static_cast<std::size_t>(k)] - seat_response(c, k)),
+                1e-9 * seat_response.col(k).norm())
+          << freq(k) << " Hz, seat " << c;
+    }
+  }
+  PathEnergy e = pc.MakeEnergy();
+  ASSERT_EQ(pc.Energy(0, freq.size(), -1, e), ContributionStatus::kOk);
+  EXPECT_NEAR(e.share.sum(), 1.0, 1e-12);
+  EXPECT_NEAR(e.projection_share.sum(), 1.0, 1e-12);
 }
 
 TEST(PathContributionsValidationTest, RejectsEmptyShapes) {
