@@ -300,6 +300,13 @@ Result<Uff58Record> ParseRecord(Cursor& cur, const Context& ctx, std::string_vie
 
   const auto n = static_cast<std::size_t>(*points);
   const std::size_t count = ValuesPerRecord(r, n);
+  // Every value takes at least one byte, so a count beyond the bytes left is a corrupt header
+  // (checked before allocating for it).
+  if (count > cur.rest().size()) {
+    return ctx.At(first + 6, "record 7 announces " + std::to_string(n) + " points (" +
+                                 std::to_string(count) + " values) but only " +
+                                 std::to_string(cur.rest().size()) + " bytes follow");
+  }
   std::vector<double> values;
   values.reserve(count);
   if (binary) {

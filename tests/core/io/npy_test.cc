@@ -211,6 +211,18 @@ TEST_F(NpyTest, RejectsUnknownVersionAndMalformedHeaderDicts) {
   EXPECT_TRUE(Contains(bad_shape.error(), "'shape' must be a tuple of integers"));
 }
 
+TEST_F(NpyTest, RejectsEveryTruncationOfAValidFile) {
+  const std::vector<std::complex<double>> values = {{1, 2}, {3, 4}, {5, 6}};
+  ASSERT_TRUE(WriteNpy<std::complex<double>>(dir_ / "full.npy", values, {3}).ok());
+  const std::string bytes = ReadFileBytes(dir_ / "full.npy");
+  for (std::size_t cut = 0; cut < bytes.size(); ++cut) {
+    WriteFileBytes(dir_ / "cut.npy", bytes.substr(0, cut));
+    auto read = ReadNpy<std::complex<double>>(dir_ / "cut.npy");
+    ASSERT_FALSE(read.ok()) << "cut at " << cut;
+    EXPECT_TRUE(Contains(read.error(), "cut.npy: ")) << read.error();
+  }
+}
+
 TEST_F(NpyTest, RejectsMissingFile) {
   auto read = ReadNpy<double>(dir_ / "absent.npy");
   ASSERT_FALSE(read.ok());

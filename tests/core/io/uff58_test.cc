@@ -325,6 +325,36 @@ TEST_F(Uff58Test, RejectsNonIeeeBinaryAndMissingDelimiters) {
   EXPECT_TRUE(Contains(no_delimiter.error(), "x.unv:1: expected a dataset delimiter"));
 }
 
+TEST_F(Uff58Test, RejectsEveryTruncationOfAValidFileWithoutCrashing) {
+  const std::vector<Uff58Record> records = {MakeRecord(true, true, false, 1),
+                                            MakeRecord(false, false, true, 2)};
+  for (UffEncoding encoding : {UffEncoding::kAscii, UffEncoding::kBinary}) {
+    ASSERT_TRUE(WriteUff58(dir_ / "t.unv", records, encoding).ok());
+    const std::string bytes = ReadFileBytes(dir_ / "t.unv");
+    std::size_t accepted = 0;
+    // Up to the final newline, which a reader does not need.
+    for (std::size_t cut = 0; cut + 1 < bytes.size(); ++cut) {
+      auto read = ParseUff58(std::string_view(bytes).substr(0, cut), "t.unv");
+      // A prefix parses only if it ends on a record boundary, and then with fewer records.
+      if (read.ok()) {
+        ++accepted;
+        EXPECT_LT(read->size(), 2u) << "cut at " << cut;
+      } else {
+        EXPECT_TRUE(Contains(read.error(), "t.unv:")) << "cut at " << cut;
+      }
+    }
+    EXPECT_GE(accepted, 2u);  // the empty prefix and the first record alone
+  }
+}
+
+TEST_F(Uff58Test, RejectsPointCountBeyondTheFileBeforeAllocating) {
+  const std::string text =
+      HandSample("         6         4         1", "         62000000000         1");
+  auto read = ParseUff58(text, "big.unv");
+  ASSERT_FALSE(read.ok());
+  EXPECT_TRUE(Contains(read.error(), "big.unv:15: record 7 announces 2000000000 points"));
+}
+
 TEST_F(Uff58Test, RejectsMissingFile) {
   auto read = ReadUff58(dir_ / "absent.unv");
   ASSERT_FALSE(read.ok());
