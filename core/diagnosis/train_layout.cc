@@ -1,5 +1,7 @@
 #include "core/diagnosis/train_layout.h"
 
+#include "core/model/gear_train.h"
+
 #include <cmath>
 #include <string>
 
@@ -89,6 +91,20 @@ Result<std::vector<double>> ShaftRateRatios(const TrainLayout& layout) {
     }
   }
   return ratio;
+}
+
+Result<TrainLayout> TrainLayoutFromGearTrain(const GearTrain& train) {
+  if (auto st = train.Validate(); !st) return Error{st.error()};
+  TrainLayout t;
+  for (const ShaftSpec& s : train.shafts) t.shafts.push_back({s.name});
+  for (const GearSpec& g : train.gears) {
+    t.gears.push_back({g.name, g.teeth, train.ShaftOfGear(g.name)});
+  }
+  for (const StageSpec& st : train.stages) {
+    t.meshes.push_back({train.GearIndex(st.driver), train.GearIndex(st.driven)});
+  }
+  t.input_shaft = 0;
+  return t;
 }
 
 }  // namespace gearpath

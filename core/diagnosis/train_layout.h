@@ -49,4 +49,10 @@ struct TrainLayout {
 // names the offending gear, shaft or mesh.
 Result<std::vector<double>> ShaftRateRatios(const TrainLayout& layout);
 
+struct GearTrain;  // core/model/gear_train.h
+
+// The layout of a GearTrain (shafts in order, the input shaft first; stages as meshes, driver
+// first). Fails with the GearTrain's own validation message.
+Result<TrainLayout> TrainLayoutFromGearTrain(const GearTrain& train);
+
 }  // namespace gearpath

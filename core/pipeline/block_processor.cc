@@ -107,6 +107,8 @@ struct BlockProcessor::Impl {
   std::vector<double> path_energy;
   std::vector<double> path_share;
   std::vector<double> path_criterion;
+  std::vector<double> criterion_healthy;  // mean criterion per path over the baseline blocks
+  int criterion_blocks = 0;
   std::vector<double> indicators;  // raw (shafts) then reconstructed (shafts)
   std::vector<double> raw_thr;
   std::vector<double> rec_thr;
@@ -471,6 +473,7 @@ Result<BlockProcessor> BlockProcessor::Create(MachineSetup setup) {
   impl->path_energy.assign(impl->paths, 0.0);
   impl->path_share.assign(impl->paths, 0.0);
   impl->path_criterion.assign(impl->paths, 0.0);
+  impl->criterion_healthy.assign(impl->paths, 0.0);
   impl->indicators.assign(2 * shafts, 0.0);
   impl->raw_thr.assign(shafts, 0.0);
   impl->rec_thr.assign(shafts, 0.0);
@@ -708,6 +711,23 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
       im.path_criterion[p] = best;
     }
   }
+  // Excess over the healthy level (see AnalysisOptions::criterion_over_baseline).
+  const bool baseline_learned = im.baseline->learned();
+  if (o.criterion_over_baseline && !baseline_learned && speed > 0.0) {
+    ++im.criterion_blocks;
+    for (std::size_t p = 0; p < P; ++p) {
+      im.criterion_healthy[p] +=
+          (im.path_criterion[p] - im.criterion_healthy[p]) / im.criterion_blocks;
+    }
+  } else if (o.criterion_over_baseline && im.criterion_blocks > 0) {
+    bool any = false;
+    for (std::size_t p = 0; p < P; ++p) any = any || im.path_criterion[p] > im.criterion_healthy[p];
+    if (any) {
+      for (std::size_t p = 0; p < P; ++p) {
+        im.path_criterion[p] = std::max(0.0, im.path_criterion[p] - im.criterion_healthy[p]);
+      }
+    }
+  }
   const int dominant = SelectDominantPath(im.path_criterion);
   out.dominant_path = dominant;
   out.dominant_path_name = dominant >= 0 ? std::string_view(im.setup.frf_set.paths[static_cast<std::size_t>(dominant)].name)
@@ -819,7 +839,13 @@ int BlockProcessor::baseline_blocks_learned() const noexcept {
 int BlockProcessor::baseline_blocks_needed() const noexcept {
   return impl_->baseline->blocks_needed();
 }
-void BlockProcessor::ResetBaseline() noexcept { impl_->baseline->Reset(); }
+void BlockProcessor::ResetBaseline() noexcept {
+  impl_->baseline->Reset();
+  if (!impl_->baseline->learned()) {
+    impl_->criterion_blocks = 0;
+    std::fill(impl_->criterion_healthy.begin(), impl_->criterion_healthy.end(), 0.0);
+  }
+}
 const MachineSetup& BlockProcessor::setup() const noexcept { return impl_->setup; }
 const BlockExpectations& BlockProcessor::expectations() const noexcept { return impl_->expect; }
 

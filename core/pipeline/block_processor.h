@@ -77,6 +77,11 @@ struct AnalysisOptions {
     kIndicator,       // max over shafts of the fault indicator of each path's contribution
   };
   DominantCriterion criterion = DominantCriterion::kSidebandEnergy;
+  // Judge the criterion by its EXCESS over the path's healthy level (learned with the
+  // baseline; a healthy mesh already has sidebands from eccentricity and mesh beating):
+  // criterion = max(0, value - healthy mean). Falls back to the plain value while learning,
+  // when thresholds are configured, or when no path exceeds its healthy level.
+  bool criterion_over_baseline = true;
   double analysis_band_lo_hz = 0.0;  // 0 / 0 = the FRF set's frequency range
   double analysis_band_hi_hz = 0.0;
   int sideband_orders = 6;           // k = 1..sideband_orders around each mesh harmonic
@@ -90,7 +95,12 @@ struct AnalysisOptions {
   // Minimum envelope band width; 0 = automatic: 2 * kIndicatorHarmonics * highest shaft rate
   // (the band must hold the modulation it is meant to show, DESIGN.md).
   double min_band_width_hz = 0.0;
-  bool remove_mesh_tones = true;        // comb-remove mesh harmonics before the kurtogram
+  // Comb-remove the mesh harmonics (+/- 1 bin) before the kurtogram and the SES. Off by
+  // default: removing the carrier but not its deterministic shaft-rate sidebands (every real
+  // mesh has them) turns them into a fully modulated envelope and RAISES the healthy indicator
+  // (measured on the Table-1 simulation: healthy thresholds 4-10x higher). The learned healthy
+  // baseline is what handles mesh beating; the kurtogram pre-whitens against mesh tones.
+  bool remove_mesh_tones = false;
   double harmonic_tolerance = 0.02;     // relative tolerance on harmonic positions (speed drift)
 
   // --- Verdict ---
@@ -119,7 +129,8 @@ struct BlockPathShare {
   std::string_view bearing;  // FrfSet bearing description
   double energy = 0.0;       // sum over channels and analysis-band bins of |C_ij|^2
   double share = 0.0;        // energy / sum of energies, in [0, 1]
-  double criterion = 0.0;    // value of the dominant-path criterion for this path
+  double criterion = 0.0;    // value of the dominant-path criterion for this path (the
+                             // excess over its healthy level when that is in use)
 };
 
 struct BlockEnvelopeBand {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/model/gear_train.h"
+
 namespace gearpath {
 namespace {
 
@@ -29,6 +31,21 @@ TEST(TrainLayoutTest, RejectsShaftUnreachableFromTheInput) {
   ASSERT_FALSE(ratios.ok());
   EXPECT_EQ(ratios.error(),
             "train layout: shaft 'output' is not connected to the input shaft through any mesh");
+}
+
+TEST(TrainLayoutTest, GearTrainTable1GivesTheSameLayoutAsTheBuiltIn) {
+  const auto layout = TrainLayoutFromGearTrain(GearTrain::Table1());
+  ASSERT_TRUE(layout.ok()) << layout.error();
+  const TrainLayout ref = TrainLayout::Table1();
+  ASSERT_EQ(layout->gears.size(), ref.gears.size());
+  for (std::size_t g = 0; g < ref.gears.size(); ++g) {
+    EXPECT_EQ(layout->gears[g].name, ref.gears[g].name);
+    EXPECT_EQ(layout->gears[g].teeth, ref.gears[g].teeth);
+    EXPECT_EQ(layout->gears[g].shaft, ref.gears[g].shaft);
+  }
+  ASSERT_EQ(layout->meshes.size(), 2u);
+  EXPECT_EQ(layout->meshes[1].gear_a, 2);
+  EXPECT_EQ(layout->meshes[1].gear_b, 3);
 }
 
 }  // namespace
