@@ -196,10 +196,14 @@ void DecideGearVerdict(const VerdictTopology& t, const VerdictInputs& in,
   add("shaft '%s' (%.3g Hz) at %.1fx threshold", t.shaft_names[best].c_str(),
       out.characteristic_hz, e_max);
   if (m1 >= 0 && in.dominant_path >= 0) {
-    add(dominant_consistent ? "; dominant path %d points at mesh %s" :
-                              "; dominant path %d sees no mesh of that shaft, mesh %s by path "
+    const auto dp = static_cast<std::size_t>(in.dominant_path);
+    char index[24];
+    std::snprintf(index, sizeof index, "%d", in.dominant_path);
+    const char* path_name = dp < t.path_names.size() ? t.path_names[dp].c_str() : index;
+    add(dominant_consistent ? "; dominant path %s points at mesh %s" :
+                              "; dominant path %s sees no mesh of that shaft, mesh %s by path "
                               "weights",
-        in.dominant_path, t.mesh_names[m1].c_str());
+        path_name, t.mesh_names[m1].c_str());
   }
   if (out.candidates.size() == 1) {
     add(" -> gear %s", t.gear_names[out.gear].c_str());

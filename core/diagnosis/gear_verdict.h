@@ -71,6 +71,7 @@ struct VerdictTopology {
   std::vector<double> shaft_ratio;          // shaft rate / input-shaft rate
   std::vector<std::string> mesh_names;      // e.g. "G1-G2"
   std::vector<std::vector<int>> path_meshes;  // meshes each path sees (via its gears)
+  std::vector<std::string> path_names;      // optional, for the reason text
   double rate_tolerance = 0.02;             // relative: shafts closer than this share a rate
 
   // Reserves the candidate vectors of `verdict` so DecideGearVerdict never allocates.

@@ -412,6 +412,7 @@ Result<BlockProcessor> BlockProcessor::Create(MachineSetup setup) {
       }
     }
     t.path_meshes.push_back(std::move(seen));
+    t.path_names.push_back(set.paths[p].name);
   }
 
   // Speed bounds: the search range and the highest speed the envelope band must serve.

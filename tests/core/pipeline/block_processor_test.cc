@@ -302,6 +302,36 @@ TEST(BlockProcessorEndToEndTest, WithDistinctToothCountsEveryGearIsToldApart) {
   }
 }
 
+// Every dominant-path criterion and every inverse method traces a chipped G1 (10 Hz, mesh 1).
+TEST(BlockProcessorEndToEndTest, EveryCriterionAndInverseMethodTracesAChippedGear1) {
+  const Machine& m = Table1Machine();
+  using Criterion = AnalysisOptions::DominantCriterion;
+  for (Criterion criterion : {Criterion::kSidebandEnergy, Criterion::kBandEnergy,
+                              Criterion::kIndicator}) {
+    for (InverseMethod method :
+         {InverseMethod::kMwi, InverseMethod::kTikhonov, InverseMethod::kLeastSquares}) {
+      MachineSetup s = MakeSetup(m);
+      s.options.criterion = criterion;
+      s.options.identification.method = method;
+      auto p = BlockProcessor::Create(s);
+      ASSERT_TRUE(p.ok()) << p.error();
+      std::uint64_t seq = 0;
+      GearboxSimulator healthy = MakeSimulator(m, FaultType::kNone, "", 7);
+      (void)RunBlocks(p.value(), healthy, kBaselineBlocks, seq);
+      GearboxSimulator sim = MakeSimulator(m, FaultType::kChippedTooth, "G1", 21);
+      const BlockResult r = RunBlocks(p.value(), sim, 1, seq);
+      SCOPED_TRACE(std::string(ToString(method)) + " criterion " +
+                   std::to_string(static_cast<int>(criterion)) + ": " +
+                   std::string(r.verdict.reason.view()));
+      EXPECT_EQ(r.criterion, criterion);
+      EXPECT_EQ(r.verdict.gear_name, "G1");
+      // A mesh force loads both shafts of its pair: B1x or B2x, never B3x (mesh 2 only).
+      EXPECT_TRUE(r.dominant_path_name == "B1x" || r.dominant_path_name == "B2x")
+          << r.dominant_path_name;
+    }
+  }
+}
+
 // The figures for the lead's note: per fault type and gear on the simulated Table-1 gearbox.
 // Prints a table; asserts that every chipped-tooth and tooth-fracture case was flagged.
 TEST(BlockProcessorEndToEndTest, PrintsTheDiagnosisTableOfTheSimulatedGearbox) {
