@@ -174,8 +174,8 @@ TEST_F(GearpathdOverDds, ReloadWithABrokenConfigurationKeepsTheRunningOne) {
   WriteConfig(invalid);
   daemon_->Signal(SIGHUP);
   EXPECT_TRUE(daemon_->WaitForLog("machines[0].analysis.inverse.method: expected one of", 20s));
-  ASSERT_TRUE(WaitStatus([](const auto&) { return true; }, 5s));
-  EXPECT_EQ(last_state_, gearpath_DEGRADED);
+  EXPECT_TRUE(WaitStatus([&](const auto&) { return last_state_ == gearpath_DEGRADED; }, 5s))
+      << "state " << last_state_;
   // Still running the old configuration: the next block is processed.
   Publish(NoiseBlock(2));
   ASSERT_TRUE(WaitStatus([](const auto& m) { return m.blocks_processed == 2; }, 30s));
@@ -186,8 +186,11 @@ TEST_F(GearpathdOverDds, ReloadWithABrokenConfigurationKeepsTheRunningOne) {
   daemon_->Signal(SIGHUP);
   EXPECT_TRUE(daemon_->WaitForLog("reload: now running 1 machine(s)", 60s));
   Publish(NoiseBlock(3));
-  ASSERT_TRUE(WaitStatus([](const auto& m) { return m.blocks_processed == 3; }, 30s));
-  EXPECT_EQ(last_state_, gearpath_RUNNING);
+  ASSERT_TRUE(WaitStatus(
+      [&](const auto& m) { return m.blocks_processed == 3 && last_state_ == gearpath_RUNNING; },
+      30s))
+      << "state " << last_state_;
+  EXPECT_EQ(last_status_.blocks_received, 3u);
 }
 
 TEST_F(GearpathdOverDds, SigtermStopsWithExitCodeZeroWithinTwoSeconds) {
