@@ -33,7 +33,7 @@ namespace gearpath::tools {
 namespace {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 
 struct InspectOptions {
   std::string input;
