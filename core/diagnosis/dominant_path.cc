@@ -19,9 +19,8 @@ void MarkLine(double bin_hz, double f, double tolerance_bins, std::uint8_t value
 
 }  // namespace
 
-void BuildSidebandMask(double bin_hz, std::span<const MeshLines> meshes, int orders,
-                       double lo_hz, double hi_hz, double tolerance_bins,
-                       std::span<std::uint8_t> mask) noexcept {
+void BuildSidebandMask(double bin_hz, std::span<const MeshLines> meshes, int orders, double lo_hz,
+                       double hi_hz, double tolerance_bins, std::span<std::uint8_t> mask) noexcept {
   std::fill(mask.begin(), mask.end(), std::uint8_t{0});
   if (!(bin_hz > 0.0) || mask.empty()) return;
   const double top = bin_hz * static_cast<double>(mask.size() - 1);
@@ -48,8 +47,8 @@ void BuildSidebandMask(double bin_hz, std::span<const MeshLines> meshes, int ord
   }
 }
 
-void BuildMeshHarmonicMask(double bin_hz, std::span<const MeshLines> meshes,
-                           double tolerance_bins, std::span<std::uint8_t> mask) noexcept {
+void BuildMeshHarmonicMask(double bin_hz, std::span<const MeshLines> meshes, double tolerance_bins,
+                           std::span<std::uint8_t> mask) noexcept {
   std::fill(mask.begin(), mask.end(), std::uint8_t{0});
   if (!(bin_hz > 0.0) || mask.empty()) return;
   const double top = bin_hz * static_cast<double>(mask.size() - 1);

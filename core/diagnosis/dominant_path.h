@@ -20,22 +20,21 @@
 namespace gearpath {
 
 struct MeshLines {
-  double mesh_hz = 0.0;                 // fundamental mesh frequency
-  std::array<double, 2> shaft_hz{};     // rates of the two shafts of the pair
+  double mesh_hz = 0.0;              // fundamental mesh frequency
+  std::array<double, 2> shaft_hz{};  // rates of the two shafts of the pair
 };
 
 // mask[k] = 1 where bin k (at k bin_hz) lies within +/- tolerance_bins of a sideband line
 // h f_m +/- k f_s (k = 1..orders, s the pair's two shafts) with the line in [lo_hz, hi_hz], and
 // not within +/- tolerance_bins of any mesh harmonic h f_m; 0 elsewhere. noexcept, no
 // allocation; mask.size() = number of bins.
-void BuildSidebandMask(double bin_hz, std::span<const MeshLines> meshes, int orders,
-                       double lo_hz, double hi_hz, double tolerance_bins,
-                       std::span<std::uint8_t> mask) noexcept;
+void BuildSidebandMask(double bin_hz, std::span<const MeshLines> meshes, int orders, double lo_hz,
+                       double hi_hz, double tolerance_bins, std::span<std::uint8_t> mask) noexcept;
 
 // mask[k] = 1 where bin k is within +/- tolerance_bins of a mesh harmonic h f_m (h >= 1, up to
 // the last bin). Used to comb-remove the deterministic mesh tones before envelope analysis.
-void BuildMeshHarmonicMask(double bin_hz, std::span<const MeshLines> meshes,
-                           double tolerance_bins, std::span<std::uint8_t> mask) noexcept;
+void BuildMeshHarmonicMask(double bin_hz, std::span<const MeshLines> meshes, double tolerance_bins,
+                           std::span<std::uint8_t> mask) noexcept;
 
 // Index of the largest criterion (first one on ties); -1 when empty or all are <= 0 or NaN.
 int SelectDominantPath(std::span<const double> criterion) noexcept;

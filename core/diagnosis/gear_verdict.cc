@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 
 namespace gearpath {
 namespace {
@@ -11,7 +11,6 @@ namespace {
 constexpr double kMeshAmbiguity = 0.2;  // mesh separation under this keeps both meshes
 
 double Clamp01(double v) noexcept { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
-
 
 // Appends "G3, G4" style names of `gears` to buf[pos...]; returns the new length.
 std::size_t AppendNames(char* buf, std::size_t cap, std::size_t pos, const VerdictTopology& t,
@@ -29,10 +28,14 @@ std::size_t AppendNames(char* buf, std::size_t cap, std::size_t pos, const Verdi
 
 std::string_view ToString(FaultState state) noexcept {
   switch (state) {
-    case FaultState::kLearning: return "learning";
-    case FaultState::kNoFault: return "no_fault";
-    case FaultState::kSuspected: return "suspected";
-    case FaultState::kAlarm: return "alarm";
+    case FaultState::kLearning:
+      return "learning";
+    case FaultState::kNoFault:
+      return "no_fault";
+    case FaultState::kSuspected:
+      return "suspected";
+    case FaultState::kAlarm:
+      return "alarm";
   }
   return "unknown";
 }
@@ -90,8 +93,9 @@ void DecideGearVerdict(const VerdictTopology& t, const VerdictInputs& in,
     out.state = FaultState::kNoFault;
     out.confidence = Clamp01(1.0 - std::max(e_max, 0.0));
     if (best >= 0) {
-      out.reason.Format("every shaft indicator under its threshold (highest: shaft '%s' at %.0f %%)",
-                        t.shaft_names[best].c_str(), 100.0 * e_max);
+      out.reason.Format(
+          "every shaft indicator under its threshold (highest: shaft '%s' at %.0f %%)",
+          t.shaft_names[best].c_str(), 100.0 * e_max);
     } else {
       out.reason.Assign("no shaft to judge");
     }
@@ -193,15 +197,15 @@ void DecideGearVerdict(const VerdictTopology& t, const VerdictInputs& in,
     const int n = std::snprintf(buf + pos, sizeof buf - pos, format, args...);
     if (n > 0) pos = std::min(sizeof buf - 1, pos + static_cast<std::size_t>(n));
   };
-  add("shaft '%s' (%.3g Hz) at %.1fx threshold", t.shaft_names[best].c_str(),
-      out.characteristic_hz, e_max);
+  add("shaft '%s' (%.3g Hz) at %.1fx threshold", t.shaft_names[best].c_str(), out.characteristic_hz,
+      e_max);
   if (m1 >= 0 && in.dominant_path >= 0) {
     const auto dp = static_cast<std::size_t>(in.dominant_path);
     char index[24];
     std::snprintf(index, sizeof index, "%d", in.dominant_path);
     const char* path_name = dp < t.path_names.size() ? t.path_names[dp].c_str() : index;
-    add(dominant_consistent ? "; dominant path %s points at mesh %s" :
-                              "; dominant path %s sees no mesh of that shaft, mesh %s by path "
+    add(dominant_consistent ? "; dominant path %s points at mesh %s"
+                            : "; dominant path %s sees no mesh of that shaft, mesh %s by path "
                               "weights",
         path_name, t.mesh_names[m1].c_str());
   }

@@ -50,29 +50,29 @@ std::string_view ToString(FaultState state) noexcept;
 
 struct GearVerdict {
   FaultState state = FaultState::kLearning;
-  int gear = -1;                  // gear index of the best candidate; -1 = none
+  int gear = -1;  // gear index of the best candidate; -1 = none
   std::string_view gear_name;
-  int shaft = -1;                 // shaft whose harmonics stand out; -1 = none
+  int shaft = -1;  // shaft whose harmonics stand out; -1 = none
   std::string_view shaft_name;
-  double characteristic_hz = 0.0; // that shaft's rate
-  double confidence = 0.0;        // in [0, 1]
-  int mesh = -1;                  // mesh index chosen; -1 = none or undecided
-  std::vector<int> candidates;    // every gear the evidence cannot exclude (gear indices)
+  double characteristic_hz = 0.0;  // that shaft's rate
+  double confidence = 0.0;         // in [0, 1]
+  int mesh = -1;                   // mesh index chosen; -1 = none or undecided
+  std::vector<int> candidates;     // every gear the evidence cannot exclude (gear indices)
   std::vector<std::string_view> candidate_names;
-  MessageText reason;             // why, in one line (names the ambiguity when there is one)
+  MessageText reason;  // why, in one line (names the ambiguity when there is one)
 };
 
 // Everything the verdict needs about the machine; built once per setup.
 struct VerdictTopology {
   std::vector<std::string> gear_names;
-  std::vector<int> gear_shaft;              // shaft index of each gear
-  std::vector<int> gear_mesh;               // mesh index of each gear (-1: in no mesh)
+  std::vector<int> gear_shaft;  // shaft index of each gear
+  std::vector<int> gear_mesh;   // mesh index of each gear (-1: in no mesh)
   std::vector<std::string> shaft_names;
-  std::vector<double> shaft_ratio;          // shaft rate / input-shaft rate
-  std::vector<std::string> mesh_names;      // e.g. "G1-G2"
+  std::vector<double> shaft_ratio;            // shaft rate / input-shaft rate
+  std::vector<std::string> mesh_names;        // e.g. "G1-G2"
   std::vector<std::vector<int>> path_meshes;  // meshes each path sees (via its gears)
-  std::vector<std::string> path_names;      // optional, for the reason text
-  double rate_tolerance = 0.02;             // relative: shafts closer than this share a rate
+  std::vector<std::string> path_names;        // optional, for the reason text
+  double rate_tolerance = 0.02;               // relative: shafts closer than this share a rate
 
   // Reserves the candidate vectors of `verdict` so DecideGearVerdict never allocates.
   void Reserve(GearVerdict& verdict) const;
@@ -80,14 +80,14 @@ struct VerdictTopology {
 
 struct VerdictInputs {
   double input_speed_hz = 0.0;
-  std::span<const double> raw;                  // per shaft
-  std::span<const double> reconstructed;        // per shaft
-  std::span<const double> raw_threshold;        // per shaft (> 0)
+  std::span<const double> raw;                      // per shaft
+  std::span<const double> reconstructed;            // per shaft
+  std::span<const double> raw_threshold;            // per shaft (> 0)
   std::span<const double> reconstructed_threshold;  // per shaft (> 0)
-  std::span<const double> path_criterion;       // per path (>= 0), the dominant-path criterion
+  std::span<const double> path_criterion;           // per path (>= 0), the dominant-path criterion
   int dominant_path = -1;
   double alarm_factor = 2.0;
-  bool learning = false;                        // thresholds not yet known
+  bool learning = false;  // thresholds not yet known
 };
 
 // Fills `out` (noexcept; allocation-free once `topology.Reserve(out)` was called). Sizes of

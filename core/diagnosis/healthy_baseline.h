@@ -20,10 +20,10 @@
 namespace gearpath {
 
 struct BaselineOptions {
-  int blocks = 20;            // N healthy blocks to learn from (>= 2)
-  double k_sigma = 4.0;       // k (>= 0)
-  double min_margin = 0.5;    // relative margin over the mean (>= 0)
-  double floor = 1e-12;       // absolute lowest threshold (> 0)
+  int blocks = 20;          // N healthy blocks to learn from (>= 2)
+  double k_sigma = 4.0;     // k (>= 0)
+  double min_margin = 0.5;  // relative margin over the mean (>= 0)
+  double floor = 1e-12;     // absolute lowest threshold (> 0)
 };
 
 class HealthyBaseline {

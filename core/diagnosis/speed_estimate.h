@@ -18,9 +18,9 @@
 namespace gearpath {
 
 struct SpeedSearch {
-  double lo_hz = 0.0;      // input-speed search range, 0 < lo < hi
+  double lo_hz = 0.0;  // input-speed search range, 0 < lo < hi
   double hi_hz = 0.0;
-  int harmonics = 3;       // H
+  int harmonics = 3;            // H
   double min_prominence = 3.0;  // peak / mean score below this -> not found
 };
 

@@ -1,9 +1,9 @@
 #include "core/diagnosis/train_layout.h"
 
-#include "core/model/gear_train.h"
-
 #include <cmath>
 #include <string>
+
+#include "core/model/gear_train.h"
 
 namespace gearpath {
 

@@ -23,7 +23,7 @@ struct TrainShaft {
 struct TrainGear {
   std::string name;  // e.g. "G1"; the names FrfSet paths use in TransferPath::gears
   int teeth = 0;
-  int shaft = -1;    // index into TrainLayout::shafts
+  int shaft = -1;  // index into TrainLayout::shafts
 };
 
 struct TrainMesh {

@@ -1,5 +1,7 @@
 #include "core/pipeline/block_processor.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -7,8 +9,6 @@
 #include <optional>
 #include <string>
 #include <utility>
-
-#include <fmt/format.h>
 
 #include "core/diagnosis/dominant_path.h"
 #include "core/diagnosis/healthy_baseline.h"
@@ -32,9 +32,7 @@ std::optional<Axis> ParseAxis(const std::string& s) {
   return std::nullopt;
 }
 
-const char* AxisName(Axis a) {
-  return a == Axis::kX ? "x" : (a == Axis::kY ? "y" : "z");
-}
+const char* AxisName(Axis a) { return a == Axis::kX ? "x" : (a == Axis::kY ? "y" : "z"); }
 
 // Median of the first n values of `v` (reorders them). 0 for n == 0.
 double MedianInPlace(std::vector<double>& v, std::size_t n) noexcept {
@@ -53,37 +51,37 @@ struct Shape {
   double bin_hz = 0.0;
   FrfGridMapping map;
   std::optional<IdentificationOperator> op;
-  std::optional<Spectrum> spectrum;          // all channels
-  std::optional<InverseSpectrum> inverse;    // one channel
+  std::optional<Spectrum> spectrum;        // all channels
+  std::optional<InverseSpectrum> inverse;  // one channel
   std::optional<Kurtogram> kurtogram;
   std::optional<BandPass> band_pass;
   std::optional<EnvelopeSpectrum> ses;
   std::uint64_t last_used = 0;
 
   // Per-block buffers.
-  std::vector<double> time;              // channels x n (FRF row order)
-  std::vector<Cd> spec;                  // channels x bins
-  Eigen::MatrixXcd forces;               // paths x in-range bins
-  Eigen::VectorXcd x;                    // channels
-  std::vector<BinFigures> figures;       // in-range bins
-  std::vector<double> work_a;            // in-range bins (medians)
+  std::vector<double> time;         // channels x n (FRF row order)
+  std::vector<Cd> spec;             // channels x bins
+  Eigen::MatrixXcd forces;          // paths x in-range bins
+  Eigen::VectorXcd x;               // channels
+  std::vector<BinFigures> figures;  // in-range bins
+  std::vector<double> work_a;       // in-range bins (medians)
   std::vector<double> work_b;
-  std::vector<double> amplitude;         // bins (speed estimate)
-  std::vector<std::uint8_t> band_mask;   // bins: analysis band & in range
+  std::vector<double> amplitude;        // bins (speed estimate)
+  std::vector<std::uint8_t> band_mask;  // bins: analysis band & in range
   std::vector<std::uint8_t> sideband_mask;
   std::vector<std::uint8_t> mesh_mask;
-  std::vector<Cd> one_spec;              // bins (one channel spectrum, scratch)
-  std::vector<double> dominant_time;     // channels x n
-  std::vector<double> raw_signal;        // n (mesh tones removed)
-  std::vector<double> rec_signal;        // n
-  std::vector<double> filtered;          // n
-  std::vector<double> ses_buf;           // bins
+  std::vector<Cd> one_spec;           // bins (one channel spectrum, scratch)
+  std::vector<double> dominant_time;  // channels x n
+  std::vector<double> raw_signal;     // n (mesh tones removed)
+  std::vector<double> rec_signal;     // n
+  std::vector<double> filtered;       // n
+  std::vector<double> ses_buf;        // bins
 };
 
 struct BlockProcessor::Impl {
   MachineSetup setup;
   BlockExpectations expect;
-  std::vector<int> block_to_row;       // block channel -> FRF row
+  std::vector<int> block_to_row;  // block channel -> FRF row
   std::vector<double> shaft_ratio;
   std::vector<MeshLines> unit_meshes;  // at 1 Hz input speed
   std::vector<double> mesh_orders;
@@ -116,9 +114,9 @@ struct BlockProcessor::Impl {
 
   Status Configure(std::size_t n);
   Shape* FindShape(std::size_t n) noexcept;
-  void Envelope(Shape& s, std::span<const double> signal, double speed_hz,
-                BlockEnvelopeBand& band, std::span<double> indicator_sum,
-                std::span<BlockShaftIndicator> shafts, bool reconstructed) noexcept;
+  void Envelope(Shape& s, std::span<const double> signal, double speed_hz, BlockEnvelopeBand& band,
+                std::span<double> indicator_sum, std::span<BlockShaftIndicator> shafts,
+                bool reconstructed) noexcept;
   void Contribution(const Shape& s, std::size_t path, std::size_t channel,
                     std::span<Cd> out) const noexcept;
 };
@@ -157,9 +155,10 @@ Status BlockProcessor::Impl::Configure(std::size_t n) {
                             ? o.min_band_width_hz
                             : 2.0 * kIndicatorHarmonics * max_ratio * max_speed_hz;
   if (ko.min_bandwidth_hz >= fs / 2.0) {
-    return Error{fmt::format("envelope band: minimum width {} Hz (2 x {} harmonics x highest "
-                             "shaft rate) does not fit below Nyquist {} Hz",
-                             ko.min_bandwidth_hz, kIndicatorHarmonics, fs / 2.0)};
+    return Error{
+        fmt::format("envelope band: minimum width {} Hz (2 x {} harmonics x highest "
+                    "shaft rate) does not fit below Nyquist {} Hz",
+                    ko.min_bandwidth_hz, kIndicatorHarmonics, fs / 2.0)};
   }
   auto kurtogram = Kurtogram::Create(n, fs, ko);
   if (!kurtogram) return Error{"kurtogram: " + kurtogram.error()};
@@ -174,8 +173,8 @@ Status BlockProcessor::Impl::Configure(std::size_t n) {
   const std::size_t in_range = static_cast<std::size_t>(s.map.frf.bins());
   s.time.assign(channels * n, 0.0);
   s.spec.assign(channels * s.bins, Cd{});
-  s.forces = Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(paths),
-                                    static_cast<Eigen::Index>(in_range));
+  s.forces =
+      Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(paths), static_cast<Eigen::Index>(in_range));
   s.x = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(channels));
   s.figures.assign(in_range, BinFigures{});
   s.work_a.assign(in_range, 0.0);
@@ -197,9 +196,9 @@ Status BlockProcessor::Impl::Configure(std::size_t n) {
 
   if (shapes.size() >= kMaxShapes) {
     // Replace the least recently used shape (the last-block pointer may dangle: reset it).
-    auto oldest = std::min_element(shapes.begin(), shapes.end(), [](const Shape& a, const Shape& b) {
-      return a.last_used < b.last_used;
-    });
+    auto oldest =
+        std::min_element(shapes.begin(), shapes.end(),
+                         [](const Shape& a, const Shape& b) { return a.last_used < b.last_used; });
     shapes.erase(oldest);
     last_shape = nullptr;
     has_last = false;
@@ -316,8 +315,7 @@ Result<BlockProcessor> BlockProcessor::Create(MachineSetup setup) {
       static_cast<std::size_t>(h.inputs()) != set.paths.size()) {
     return Error{at + fmt::format("frf_set.decoupled is {}x{} but the set lists {} channels and "
                                   "{} paths",
-                                  h.outputs(), h.inputs(), set.channels.size(),
-                                  set.paths.size())};
+                                  h.outputs(), h.inputs(), set.channels.size(), set.paths.size())};
   }
   impl->channels = set.channels.size();
   impl->paths = set.paths.size();
@@ -588,7 +586,8 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
     SpeedSearch search;
     search.lo_hz = o.speed_search_lo_hz;
     search.hi_hz = o.speed_search_hi_hz;
-    const SpeedEstimate est = EstimateSpeedFromMeshes(s.amplitude, s.bin_hz, im.mesh_orders, search);
+    const SpeedEstimate est =
+        EstimateSpeedFromMeshes(s.amplitude, s.bin_hz, im.mesh_orders, search);
     if (est.found) {
       speed = est.speed_hz;
       source = SpeedSource::kEstimated;
@@ -731,8 +730,10 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
   }
   const int dominant = SelectDominantPath(im.path_criterion);
   out.dominant_path = dominant;
-  out.dominant_path_name = dominant >= 0 ? std::string_view(im.setup.frf_set.paths[static_cast<std::size_t>(dominant)].name)
-                                         : std::string_view{};
+  out.dominant_path_name =
+      dominant >= 0
+          ? std::string_view(im.setup.frf_set.paths[static_cast<std::size_t>(dominant)].name)
+          : std::string_view{};
   for (std::size_t p = 0; p < P; ++p) {
     out.paths[p].name = im.setup.frf_set.paths[p].name;
     out.paths[p].bearing = im.setup.frf_set.paths[p].bearing;
@@ -753,10 +754,10 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
   im.last_shape = &s;
   im.last_dominant = dominant;
   im.has_last = true;
-  const std::size_t channel = dominant >= 0 ? best_channel(static_cast<std::size_t>(dominant))
-                                            : (o.indicator_channel >= 0
-                                                   ? static_cast<std::size_t>(o.indicator_channel)
-                                                   : 0);
+  const std::size_t channel =
+      dominant >= 0
+          ? best_channel(static_cast<std::size_t>(dominant))
+          : (o.indicator_channel >= 0 ? static_cast<std::size_t>(o.indicator_channel) : 0);
   out.indicator_channel = static_cast<int>(channel);
 
   // 6-8. Kurtogram band, band-pass, SES, indicators: raw measured signal and reconstructed

@@ -41,8 +41,8 @@
 #include "core/common/result.h"
 #include "core/diagnosis/fixed_text.h"
 #include "core/diagnosis/gear_verdict.h"
-#include "core/dsp/harmonic_indicator.h"  // kIndicatorHarmonics (5, seed Sec. 4.3)
 #include "core/diagnosis/train_layout.h"
+#include "core/dsp/harmonic_indicator.h"  // kIndicatorHarmonics (5, seed Sec. 4.3)
 #include "core/frf/frf_set.h"
 #include "core/inverse/identification_operator.h"
 #include "core/pipeline/block_validation.h"
@@ -58,8 +58,8 @@ struct AnalysisOptions {
   IdentificationOptions identification;
 
   // --- Block expectations ---
-  double sample_rate_hz = 0.0;                 // required (> 0)
-  double sample_rate_tolerance = 1e-4;         // relative
+  double sample_rate_hz = 0.0;          // required (> 0)
+  double sample_rate_tolerance = 1e-4;  // relative
   std::uint32_t min_samples_per_channel = 1024;
   std::uint32_t max_samples_per_channel = 1u << 18;
 
@@ -84,7 +84,7 @@ struct AnalysisOptions {
   bool criterion_over_baseline = true;
   double analysis_band_lo_hz = 0.0;  // 0 / 0 = the FRF set's frequency range
   double analysis_band_hi_hz = 0.0;
-  int sideband_orders = 6;           // k = 1..sideband_orders around each mesh harmonic
+  int sideband_orders = 6;  // k = 1..sideband_orders around each mesh harmonic
 
   // Indicator channel (row of the FRF set) used for the raw and the reconstructed signal;
   // -1 = the channel where the dominant path's contribution is largest.
@@ -101,7 +101,7 @@ struct AnalysisOptions {
   // (measured on the Table-1 simulation: healthy thresholds 4-10x higher). The learned healthy
   // baseline is what handles mesh beating; the kurtogram pre-whitens against mesh tones.
   bool remove_mesh_tones = false;
-  double harmonic_tolerance = 0.02;     // relative tolerance on harmonic positions (speed drift)
+  double harmonic_tolerance = 0.02;  // relative tolerance on harmonic positions (speed drift)
 
   // --- Verdict ---
   // Per-shaft thresholds of the raw and of the reconstructed indicator (same order as the
@@ -115,8 +115,8 @@ struct AnalysisOptions {
 
 struct MachineSetup {
   std::string machine_id;
-  FrfSet frf_set;       // must carry `decoupled` (channels x paths)
-  TrainLayout train;    // gear names must match the names in frf_set.paths[i].gears
+  FrfSet frf_set;     // must carry `decoupled` (channels x paths)
+  TrainLayout train;  // gear names must match the names in frf_set.paths[i].gears
   // Block channel c is accelerometer block_channels[c]; it is matched to the FRF row with the
   // same sensor id and axis. Empty = the FRF set's channels, in their order. Every FRF row
   // must be present; block channels without an FRF row are rejected at Create().
@@ -136,29 +136,29 @@ struct BlockPathShare {
 struct BlockEnvelopeBand {
   double centre_hz = 0.0;
   double width_hz = 0.0;
-  int level = 0;              // kurtogram level (may be fractional-tree level / 1-3 split)
-  double kurtosis = 0.0;      // spectral kurtosis of the selected band
-  bool significant = false;   // false: no band stood out; the default band was used
+  int level = 0;             // kurtogram level (may be fractional-tree level / 1-3 split)
+  double kurtosis = 0.0;     // spectral kurtosis of the selected band
+  bool significant = false;  // false: no band stood out; the default band was used
 };
 
 struct BlockShaftIndicator {
-  std::string_view shaft;           // TrainLayout shaft name
-  double characteristic_hz = 0.0;   // shaft rate at this block's speed
-  double raw = 0.0;                 // sum of the five SES harmonic amplitudes, raw signal
-  double reconstructed = 0.0;       // same, dominant-path contribution
-  double enhancement_percent = 0.0; // 100 * reconstructed / raw (0 when raw == 0)
-  double raw_threshold = 0.0;       // thresholds the indicators are judged against (learned
+  std::string_view shaft;                // TrainLayout shaft name
+  double characteristic_hz = 0.0;        // shaft rate at this block's speed
+  double raw = 0.0;                      // sum of the five SES harmonic amplitudes, raw signal
+  double reconstructed = 0.0;            // same, dominant-path contribution
+  double enhancement_percent = 0.0;      // 100 * reconstructed / raw (0 when raw == 0)
+  double raw_threshold = 0.0;            // thresholds the indicators are judged against (learned
   double reconstructed_threshold = 0.0;  // or configured; 0 while learning)
   std::array<double, kIndicatorHarmonics> raw_harmonics{};
   std::array<double, kIndicatorHarmonics> reconstructed_harmonics{};
 };
 
 struct BlockRegularisation {
-  double alpha_median = 0.0;       // regularisation parameter over in-range bins
-  double condition_median = 0.0;   // condition number of the inverted operator per bin
+  double alpha_median = 0.0;      // regularisation parameter over in-range bins
+  double condition_median = 0.0;  // condition number of the inverted operator per bin
   double condition_max = 0.0;
-  double relative_residual = 0.0;  // ||x - H F|| / ||x|| over the analysis band, all channels
-  std::uint32_t bins_used = 0;     // bins inside the FRF range
+  double relative_residual = 0.0;      // ||x - H F|| / ||x|| over the analysis band, all channels
+  std::uint32_t bins_used = 0;         // bins inside the FRF range
   std::uint32_t bins_outside_frf = 0;  // bins with forces set to zero (outside FRF range)
 };
 
@@ -168,19 +168,20 @@ struct BlockResult {
   std::uint64_t sequence_gap = 0;  // blocks missing just before this one (0 = none)
   bool sequence_restarted = false;
 
-  double speed_hz = 0.0;           // input-shaft speed used
+  double speed_hz = 0.0;  // input-shaft speed used
   SpeedSource speed_source = SpeedSource::kUnknown;
 
   int dominant_path = -1;
   std::string_view dominant_path_name;
-  AnalysisOptions::DominantCriterion criterion = AnalysisOptions::DominantCriterion::kSidebandEnergy;
+  AnalysisOptions::DominantCriterion criterion =
+      AnalysisOptions::DominantCriterion::kSidebandEnergy;
   double analysis_band_lo_hz = 0.0;
   double analysis_band_hi_hz = 0.0;
-  std::vector<BlockPathShare> paths;    // every path, FrfSet order
-  int indicator_channel = -1;      // FRF row used for raw / reconstructed indicators
+  std::vector<BlockPathShare> paths;  // every path, FrfSet order
+  int indicator_channel = -1;         // FRF row used for raw / reconstructed indicators
 
-  BlockEnvelopeBand raw_band;          // kurtogram band of the raw signal
-  BlockEnvelopeBand reconstructed_band;  // kurtogram band of the dominant-path signal
+  BlockEnvelopeBand raw_band;               // kurtogram band of the raw signal
+  BlockEnvelopeBand reconstructed_band;     // kurtogram band of the dominant-path signal
   std::vector<BlockShaftIndicator> shafts;  // TrainLayout order
 
   GearVerdict verdict;

@@ -7,9 +7,12 @@ namespace {
 
 const char* AxisName(Axis axis) noexcept {
   switch (axis) {
-    case Axis::kX: return "x";
-    case Axis::kY: return "y";
-    case Axis::kZ: return "z";
+    case Axis::kX:
+      return "x";
+    case Axis::kY:
+      return "y";
+    case Axis::kZ:
+      return "z";
   }
   return "?";
 }
@@ -21,18 +24,30 @@ int Len(std::string_view s) noexcept { return static_cast<int>(s.size()); }
 
 std::string_view ToString(RejectReason reason) noexcept {
   switch (reason) {
-    case RejectReason::kNone: return "none";
-    case RejectReason::kUnknownMachine: return "unknown_machine";
-    case RejectReason::kOversized: return "oversized";
-    case RejectReason::kEmpty: return "empty";
-    case RejectReason::kWrongChannelCount: return "wrong_channel_count";
-    case RejectReason::kWrongChannelLayout: return "wrong_channel_layout";
-    case RejectReason::kWrongSampleRate: return "wrong_sample_rate";
-    case RejectReason::kBadLength: return "bad_length";
-    case RejectReason::kNonFinite: return "non_finite";
-    case RejectReason::kDuplicateSequence: return "duplicate_sequence";
-    case RejectReason::kOutOfOrderSequence: return "out_of_order_sequence";
-    case RejectReason::kNotConfigured: return "not_configured";
+    case RejectReason::kNone:
+      return "none";
+    case RejectReason::kUnknownMachine:
+      return "unknown_machine";
+    case RejectReason::kOversized:
+      return "oversized";
+    case RejectReason::kEmpty:
+      return "empty";
+    case RejectReason::kWrongChannelCount:
+      return "wrong_channel_count";
+    case RejectReason::kWrongChannelLayout:
+      return "wrong_channel_layout";
+    case RejectReason::kWrongSampleRate:
+      return "wrong_sample_rate";
+    case RejectReason::kBadLength:
+      return "bad_length";
+    case RejectReason::kNonFinite:
+      return "non_finite";
+    case RejectReason::kDuplicateSequence:
+      return "duplicate_sequence";
+    case RejectReason::kOutOfOrderSequence:
+      return "out_of_order_sequence";
+    case RejectReason::kNotConfigured:
+      return "not_configured";
   }
   return "unknown";
 }
@@ -47,16 +62,16 @@ RejectReason ValidateBlock(const AccelBlockView& block, const BlockExpectations&
     return RejectReason::kUnknownMachine;
   }
   if (block.samples.size() > expected.max_total_samples) {
-    message.Format("block of machine '%.*s' carries %zu samples, over the cap of %zu",
-                   Len(machine), machine.data(), block.samples.size(),
-                   expected.max_total_samples);
+    message.Format("block of machine '%.*s' carries %zu samples, over the cap of %zu", Len(machine),
+                   machine.data(), block.samples.size(), expected.max_total_samples);
     return RejectReason::kOversized;
   }
   if (block.channels.empty() || block.samples.empty() || block.samples_per_channel == 0) {
-    message.Format("block %llu of machine '%.*s' is empty (%zu channels, %u samples per channel, "
-                   "%zu samples)",
-                   static_cast<unsigned long long>(block.sequence), Len(machine), machine.data(),
-                   block.channels.size(), block.samples_per_channel, block.samples.size());
+    message.Format(
+        "block %llu of machine '%.*s' is empty (%zu channels, %u samples per channel, "
+        "%zu samples)",
+        static_cast<unsigned long long>(block.sequence), Len(machine), machine.data(),
+        block.channels.size(), block.samples_per_channel, block.samples.size());
     return RejectReason::kEmpty;
   }
   if (block.channels.size() != expected.channels.size()) {
@@ -76,9 +91,11 @@ RejectReason ValidateBlock(const AccelBlockView& block, const BlockExpectations&
   }
   const double rate = block.sample_rate_hz;
   const double want_rate = expected.sample_rate_hz;
-  if (!std::isfinite(rate) || std::abs(rate - want_rate) > expected.sample_rate_tolerance * want_rate) {
-    message.Format("sample rate %g Hz does not match machine '%.*s' (expects %g Hz +/- %g %%)", rate,
-                   Len(machine), machine.data(), want_rate, expected.sample_rate_tolerance * 100.0);
+  if (!std::isfinite(rate) ||
+      std::abs(rate - want_rate) > expected.sample_rate_tolerance * want_rate) {
+    message.Format("sample rate %g Hz does not match machine '%.*s' (expects %g Hz +/- %g %%)",
+                   rate, Len(machine), machine.data(), want_rate,
+                   expected.sample_rate_tolerance * 100.0);
     return RejectReason::kWrongSampleRate;
   }
   const std::size_t n = block.samples_per_channel;
@@ -88,15 +105,17 @@ RejectReason ValidateBlock(const AccelBlockView& block, const BlockExpectations&
     return RejectReason::kBadLength;
   }
   if (n < expected.min_samples_per_channel) {
-    message.Format("block has %zu samples per channel, too short for machine '%.*s' "
-                   "(at least %u)",
-                   n, Len(machine), machine.data(), expected.min_samples_per_channel);
+    message.Format(
+        "block has %zu samples per channel, too short for machine '%.*s' "
+        "(at least %u)",
+        n, Len(machine), machine.data(), expected.min_samples_per_channel);
     return RejectReason::kBadLength;
   }
   if (n > expected.max_samples_per_channel) {
-    message.Format("block has %zu samples per channel, too long for machine '%.*s' "
-                   "(at most %u)",
-                   n, Len(machine), machine.data(), expected.max_samples_per_channel);
+    message.Format(
+        "block has %zu samples per channel, too long for machine '%.*s' "
+        "(at most %u)",
+        n, Len(machine), machine.data(), expected.max_samples_per_channel);
     return RejectReason::kBadLength;
   }
   for (std::size_t i = 0; i < block.samples.size(); ++i) {

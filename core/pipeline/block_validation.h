@@ -22,18 +22,18 @@
 namespace gearpath {
 
 enum class RejectReason : std::uint8_t {
-  kNone,                 // accepted
-  kUnknownMachine,       // machine id is not the one this processor watches
-  kOversized,            // more samples than the hard cap (checked before reading any sample)
-  kEmpty,                // no channels or no samples
-  kWrongChannelCount,    // channel count differs from the machine's layout
-  kWrongChannelLayout,   // a channel's (sensor, axis) differs from the layout at that index
-  kWrongSampleRate,      // sample rate outside the machine's rate +/- tolerance
-  kBadLength,            // samples per channel too short / too long / samples.size() inconsistent
-  kNonFinite,            // NaN or Inf sample
-  kDuplicateSequence,    // same sequence number as the last accepted block
-  kOutOfOrderSequence,   // sequence number below the last accepted block
-  kNotConfigured,        // processor could not configure for this block shape (see message)
+  kNone,                // accepted
+  kUnknownMachine,      // machine id is not the one this processor watches
+  kOversized,           // more samples than the hard cap (checked before reading any sample)
+  kEmpty,               // no channels or no samples
+  kWrongChannelCount,   // channel count differs from the machine's layout
+  kWrongChannelLayout,  // a channel's (sensor, axis) differs from the layout at that index
+  kWrongSampleRate,     // sample rate outside the machine's rate +/- tolerance
+  kBadLength,           // samples per channel too short / too long / samples.size() inconsistent
+  kNonFinite,           // NaN or Inf sample
+  kDuplicateSequence,   // same sequence number as the last accepted block
+  kOutOfOrderSequence,  // sequence number below the last accepted block
+  kNotConfigured,       // processor could not configure for this block shape (see message)
 };
 
 // Stable snake_case name, e.g. "wrong_sample_rate" (used as the status topic's counter key).
@@ -47,9 +47,9 @@ struct ExpectedChannel {
 
 struct BlockExpectations {
   std::string machine_id;
-  std::vector<ExpectedChannel> channels;    // exact order of the block's channels
-  double sample_rate_hz = 0.0;              // > 0
-  double sample_rate_tolerance = 1e-4;      // relative (1e-4 = 0.01 %)
+  std::vector<ExpectedChannel> channels;  // exact order of the block's channels
+  double sample_rate_hz = 0.0;            // > 0
+  double sample_rate_tolerance = 1e-4;    // relative (1e-4 = 0.01 %)
   std::uint32_t min_samples_per_channel = 256;
   std::uint32_t max_samples_per_channel = 1u << 20;
   std::size_t max_total_samples = std::size_t{1} << 26;  // hard cap, any layout

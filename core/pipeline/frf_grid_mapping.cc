@@ -1,9 +1,9 @@
 #include "core/pipeline/frf_grid_mapping.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <string>
-
-#include <fmt/format.h>
 
 namespace gearpath {
 
@@ -22,8 +22,8 @@ Result<FrfGridMapping> MapFrfToBlockGrid(const FrfMatrix& frf, std::size_t block
                                frf.inputs())};
     }
     if (!m.allFinite() || !std::isfinite(frf.frequency_hz[i])) {
-      return Error{fmt::format("FRF grid mapping: non-finite FRF value at {} Hz",
-                               frf.frequency_hz[i])};
+      return Error{
+          fmt::format("FRF grid mapping: non-finite FRF value at {} Hz", frf.frequency_hz[i])};
     }
     if (i > 0 && !(frf.frequency_hz[i] > frf.frequency_hz[i - 1])) {
       return Error{fmt::format("FRF grid mapping: frequencies not strictly increasing at {} Hz",

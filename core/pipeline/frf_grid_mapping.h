@@ -23,10 +23,10 @@ namespace gearpath {
 struct FrfGridMapping {
   std::size_t block_length = 0;
   double sample_rate_hz = 0.0;
-  std::size_t block_bins = 0;   // N/2 + 1
-  std::size_t first_bin = 0;    // first in-range block bin
-  FrfMatrix frf;                // in-range bins only: frf.at[i] is block bin first_bin + i
-  std::size_t bins_outside = 0; // block_bins - frf.bins()
+  std::size_t block_bins = 0;    // N/2 + 1
+  std::size_t first_bin = 0;     // first in-range block bin
+  FrfMatrix frf;                 // in-range bins only: frf.at[i] is block bin first_bin + i
+  std::size_t bins_outside = 0;  // block_bins - frf.bins()
 
   bool InRange(std::size_t bin) const noexcept {
     return bin >= first_bin && bin < first_bin + static_cast<std::size_t>(frf.bins());

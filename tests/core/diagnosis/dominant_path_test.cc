@@ -22,8 +22,8 @@ TEST(DominantPathTest, SidebandMaskMarksMeshPlusMinusShaftLinesButNotTheMeshLine
     }
   }
   for (std::size_t k = 0; k < mask.size(); ++k) {
-    const bool want = std::find(expected.begin(), expected.end(), static_cast<int>(k)) !=
-                      expected.end();
+    const bool want =
+        std::find(expected.begin(), expected.end(), static_cast<int>(k)) != expected.end();
     EXPECT_EQ(mask[k] != 0, want) << k;  // 2nd harmonic (200 +/- ...) is outside 0..150 Hz
   }
 }

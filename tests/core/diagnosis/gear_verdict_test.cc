@@ -114,8 +114,7 @@ TEST(GearVerdictTest, SevenHertzWithOutputBearingDominantNamesGears3And4AsCandid
   EXPECT_EQ(v.candidate_names[1], "G4");
   EXPECT_EQ(v.mesh, 1);
   const std::string reason(v.reason.view());
-  EXPECT_NE(reason.find("they share mesh G3-G4 and shaft rate 7 Hz"), std::string::npos)
-      << reason;
+  EXPECT_NE(reason.find("they share mesh G3-G4 and shaft rate 7 Hz"), std::string::npos) << reason;
 }
 
 TEST(GearVerdictTest, SharedBearingDominantUsesTheOtherPathsToPickTheMesh) {
@@ -137,8 +136,7 @@ TEST(GearVerdictTest, SharedBearingWithBalancedEndsKeepsBothMeshesAndSaysSo) {
   ASSERT_EQ(v.candidates.size(), 3u);  // G2, G3, G4
   EXPECT_EQ(v.mesh, -1);
   EXPECT_DOUBLE_EQ(v.confidence, 0.0);  // mesh separation is zero
-  EXPECT_NE(std::string(v.reason.view()).find("does not separate their meshes"),
-            std::string::npos);
+  EXPECT_NE(std::string(v.reason.view()).find("does not separate their meshes"), std::string::npos);
 }
 
 TEST(GearVerdictTest, DistinctToothCountsTellEveryGearApart) {

@@ -96,7 +96,8 @@ GearboxSimulator MakeSimulator(const Machine& m, FaultType type, const std::stri
 }
 
 // Feeds `count` blocks; returns the last result.
-BlockResult RunBlocks(BlockProcessor& p, GearboxSimulator& sim, int count, std::uint64_t& sequence) {
+BlockResult RunBlocks(BlockProcessor& p, GearboxSimulator& sim, int count,
+                      std::uint64_t& sequence) {
   AccelBlock block;
   BlockResult result;
   for (int i = 0; i < count; ++i) {
@@ -137,8 +138,9 @@ TEST(BlockProcessorCreateTest, RejectsPathNamingAGearOutsideTheTrain) {
   s.frf_set.paths[1].gears = {"G9"};
   const auto p = BlockProcessor::Create(s);
   ASSERT_FALSE(p.ok());
-  EXPECT_EQ(p.error(), "machine 'sim': frf_set.paths[1] (B2x) names gear 'G9', which is not in "
-                       "the gear train");
+  EXPECT_EQ(p.error(),
+            "machine 'sim': frf_set.paths[1] (B2x) names gear 'G9', which is not in "
+            "the gear train");
 }
 
 TEST(BlockProcessorCreateTest, RejectsBlockChannelWithoutFrfRow) {
@@ -237,6 +239,30 @@ TEST(BlockProcessorTest, EstimatesTheSpeedFromTheMeshLinesWhenNothingGivesIt) {
   EXPECT_NEAR(r.speed_hz, sim.speed_hz(), 0.002 * sim.speed_hz());
 }
 
+TEST(BlockProcessorTest, ReportsSequenceGapsAndRejectsDuplicatesWithoutAdvancing) {
+  auto p = BlockProcessor::Create(MakeSetup(Table1Machine()));
+  ASSERT_TRUE(p.ok()) << p.error();
+  GearboxSimulator sim = MakeSimulator(Table1Machine(), FaultType::kNone, "", 1, false);
+  AccelBlock block;
+  BlockResult r;
+  sim.NextBlock(block);
+  block.sequence = 10;
+  ASSERT_TRUE(p->Process(block.view(), r).accepted());
+  EXPECT_EQ(r.sequence_gap, 0u);
+  // No speed in the block: the configured nominal speed is used and reported as such.
+  EXPECT_EQ(r.speed_source, SpeedSource::kConfiguration);
+  EXPECT_DOUBLE_EQ(r.speed_hz, 10.0);
+  const ProcessOutcome dup = p->Process(block.view(), r);
+  EXPECT_EQ(dup.reason, RejectReason::kDuplicateSequence);
+  EXPECT_EQ(dup.message.view(),
+            "block 10 of machine 'sim' repeats the last accepted sequence number");
+  sim.NextBlock(block);
+  block.sequence = 13;
+  ASSERT_TRUE(p->Process(block.view(), r).accepted());
+  EXPECT_EQ(r.sequence, 13u);
+  EXPECT_EQ(r.sequence_gap, 2u);
+}
+
 TEST(BlockProcessorTest, HealthyGearboxGivesNoFaultAgainstItsLearnedBaseline) {
   std::uint64_t seq = 0;
   BlockProcessor p = LearnedProcessor(Table1Machine(), seq);
@@ -306,8 +332,8 @@ TEST(BlockProcessorEndToEndTest, WithDistinctToothCountsEveryGearIsToldApart) {
 TEST(BlockProcessorEndToEndTest, EveryCriterionAndInverseMethodTracesAChippedGear1) {
   const Machine& m = Table1Machine();
   using Criterion = AnalysisOptions::DominantCriterion;
-  for (Criterion criterion : {Criterion::kSidebandEnergy, Criterion::kBandEnergy,
-                              Criterion::kIndicator}) {
+  for (Criterion criterion :
+       {Criterion::kSidebandEnergy, Criterion::kBandEnergy, Criterion::kIndicator}) {
     for (InverseMethod method :
          {InverseMethod::kMwi, InverseMethod::kTikhonov, InverseMethod::kLeastSquares}) {
       MachineSetup s = MakeSetup(m);
@@ -338,10 +364,10 @@ TEST(BlockProcessorEndToEndTest, PrintsTheDiagnosisTableOfTheSimulatedGearbox) {
   const Machine& m = Table1Machine();
   std::uint64_t seq = 0;
   BlockProcessor p = LearnedProcessor(m, seq);
-  std::printf("\n%-9s %-4s %-5s %-6s %-10s %-5s %-11s %-11s %-9s %-7s\n", "fault", "gear",
-              "dom", "share", "suspected", "conf", "raw", "recon", "enh[%]", "band");
-  for (FaultType type : {FaultType::kChippedTooth, FaultType::kLocalizedWear,
-                         FaultType::kToothFracture}) {
+  std::printf("\n%-9s %-4s %-5s %-6s %-10s %-5s %-11s %-11s %-9s %-7s\n", "fault", "gear", "dom",
+              "share", "suspected", "conf", "raw", "recon", "enh[%]", "band");
+  for (FaultType type :
+       {FaultType::kChippedTooth, FaultType::kLocalizedWear, FaultType::kToothFracture}) {
     for (const char* gear : {"G1", "G2", "G3", "G4"}) {
       GearboxSimulator sim = MakeSimulator(m, type, gear, 31);
       const BlockResult r = RunBlocks(p, sim, 1, seq);
@@ -350,15 +376,15 @@ TEST(BlockProcessorEndToEndTest, PrintsTheDiagnosisTableOfTheSimulatedGearbox) {
         suspects += (suspects.empty() ? "" : "/") + std::string(c);
       }
       const auto& sh = r.shafts[static_cast<std::size_t>(m.train.ShaftOfGear(gear))];
-      std::printf("%-9s %-4s %-5.*s %-6.3f %-10s %-5.2f %-11.4g %-11.4g %-9.0f %.0f-%.0f thr %.3g/%.3g\n",
-                  FaultTypeName(type), gear, static_cast<int>(r.dominant_path_name.size()),
-                  r.dominant_path_name.data(),
-                  r.paths[static_cast<std::size_t>(r.dominant_path)].share,
-                  suspects.empty() ? "-" : suspects.c_str(), r.verdict.confidence, sh.raw,
-                  sh.reconstructed, sh.enhancement_percent,
-                  r.reconstructed_band.centre_hz - r.reconstructed_band.width_hz / 2,
-                  r.reconstructed_band.centre_hz + r.reconstructed_band.width_hz / 2,
-                  sh.raw_threshold, sh.reconstructed_threshold);
+      std::printf(
+          "%-9s %-4s %-5.*s %-6.3f %-10s %-5.2f %-11.4g %-11.4g %-9.0f %.0f-%.0f thr %.3g/%.3g\n",
+          FaultTypeName(type), gear, static_cast<int>(r.dominant_path_name.size()),
+          r.dominant_path_name.data(), r.paths[static_cast<std::size_t>(r.dominant_path)].share,
+          suspects.empty() ? "-" : suspects.c_str(), r.verdict.confidence, sh.raw, sh.reconstructed,
+          sh.enhancement_percent,
+          r.reconstructed_band.centre_hz - r.reconstructed_band.width_hz / 2,
+          r.reconstructed_band.centre_hz + r.reconstructed_band.width_hz / 2, sh.raw_threshold,
+          sh.reconstructed_threshold);
       // Localized wear at severity 1 (a smooth 1.25 um pulse) stays under the healthy
       // envelope lines of the simulator's 5 % eccentricity modulation: printed, not asserted.
       if (type != FaultType::kLocalizedWear) {
