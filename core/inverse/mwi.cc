@@ -35,7 +35,11 @@ Result<Eigen::VectorXcd> SolveMwiByIteration(const Eigen::MatrixXcd& h, const Ei
   const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(m);
   const Eigen::VectorXcd y = h.adjoint() * x;
   Eigen::VectorXcd f = Eigen::VectorXcd::Zero(n);
-  for (int k = 0; k < iterations; ++k) f = lu.solve(y + alpha * f);
+  Eigen::VectorXcd rhs(n);
+  for (int k = 0; k < iterations; ++k) {
+    rhs = y + alpha * f;  // separate vector: the LU solve must not read f while writing it
+    f = lu.solve(rhs);
+  }
   return Eigen::VectorXcd(w->asDiagonal() * f);
 }
 
