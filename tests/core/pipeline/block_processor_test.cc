@@ -199,6 +199,13 @@ TEST(BlockProcessorTest, ContributionsOfAllPathsReproduceTheMeasuredChannel) {
   EXPECT_LT(std::sqrt(err / ref), 0.05);
   EXPECT_LT(r.regularisation.relative_residual, 0.05);
   EXPECT_EQ(r.regularisation.bins_outside_frf, 1u);  // the DC bin
+  // The dominant path's published time signal is that path's contribution.
+  ASSERT_GE(r.dominant_path, 0);
+  ASSERT_TRUE(p->PathSignal(static_cast<std::size_t>(r.dominant_path), 1, one));
+  const std::span<const double> dominant = p->DominantPathSignal(1);
+  ASSERT_EQ(dominant.size(), kBlock);
+  for (std::size_t i = 0; i < kBlock; ++i) EXPECT_DOUBLE_EQ(dominant[i], one[i]);
+  EXPECT_TRUE(p->DominantPathSignal(3).empty());  // no such channel
   double shares = 0.0;
   for (const BlockPathShare& s : r.paths) shares += s.share;
   EXPECT_NEAR(shares, 1.0, 1e-12);
