@@ -70,7 +70,7 @@ TEST_F(GearpathdOverDds, RejectsEveryKindOfBadBlockWithItsReasonAndProcessesTheN
          b.samples_per_channel = 512;
          b.samples.resize(b.channels.size() * 512);
        }},
-      {"oversized (longer than the machine's maximum)", RejectReason::kBadLength,
+      {"oversized (longer than the machine's maximum)", RejectReason::kOversized,
        [](AccelBlock& b) {
          b.samples_per_channel = 2 * kBlockLength;
          b.samples.resize(b.channels.size() * 2 * kBlockLength, 0.5f);
