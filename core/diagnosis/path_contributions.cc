@@ -84,8 +84,7 @@ PathEnergy PathContributions::MakeEnergy() const {
 }
 
 ContributionStatus PathContributions::Energy(Eigen::Index first_bin, Eigen::Index end_bin,
-                                             Eigen::Index channel,
-                                             PathEnergy& out) const noexcept {
+                                             Eigen::Index channel, PathEnergy& out) const noexcept {
   if (first_bin < 0 || end_bin > bins_ || first_bin >= end_bin) {
     return ContributionStatus::kBadBinRange;
   }

@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <cstdint>
-#include <numeric>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <set>
 #include <string>
@@ -52,8 +52,7 @@ std::optional<std::vector<double>> RelativeSpeeds(const GearTrain& train,
         speed[d] = speed[m] / ratio;
         known[d] = 1;
         changed = true;
-      } else if (known[d] && known[m] &&
-                 std::abs(speed[m] - speed[d] * ratio) > 1e-12 * speed[d]) {
+      } else if (known[d] && known[m] && std::abs(speed[m] - speed[d] * ratio) > 1e-12 * speed[d]) {
         *why = Label("stages", s, st.driver + "->" + st.driven) +
                ": tooth ratio contradicts the other stages (closed loop with inconsistent speeds)";
         return std::nullopt;
@@ -146,8 +145,8 @@ bool GearTrain::IsValid(std::string* why) const {
     return false;
   }
   if (!(pressure_angle_deg > 0.0 && pressure_angle_deg < 45.0)) {
-    msg = "pressure_angle_deg: must be in (0, 45) degrees, got " +
-          std::to_string(pressure_angle_deg);
+    msg =
+        "pressure_angle_deg: must be in (0, 45) degrees, got " + std::to_string(pressure_angle_deg);
     return false;
   }
   if (!(addendum_coefficient > 0.0 && addendum_coefficient <= 2.0)) {
@@ -292,7 +291,8 @@ Result<TrainKinematics> GearTrain::Kinematics(double input_hz) const {
     gk.teeth = gears[g].teeth;
     gk.shaft = shaft_of_gear[g];
     for (std::size_t s = 0; s < stages.size(); ++s) {
-      if (stages[s].driver == gk.name || stages[s].driven == gk.name) gk.stage = static_cast<int>(s);
+      if (stages[s].driver == gk.name || stages[s].driven == gk.name)
+        gk.stage = static_cast<int>(s);
     }
     gk.characteristic_hz = k.shafts[static_cast<std::size_t>(gk.shaft)].rotation_hz;
     k.gears.push_back(gk);

@@ -51,16 +51,16 @@ struct ShaftKinematics {
 struct MeshKinematics {
   std::string driver;
   std::string driven;
-  double mesh_hz = 0.0;         // = z_driver * f_driver_shaft = z_driven * f_driven_shaft
-  double contact_ratio = 0.0;   // involute transverse contact ratio of the pair (standard gears)
+  double mesh_hz = 0.0;        // = z_driver * f_driver_shaft = z_driven * f_driven_shaft
+  double contact_ratio = 0.0;  // involute transverse contact ratio of the pair (standard gears)
 };
 
 struct GearKinematics {
   std::string name;
   int teeth = 0;
-  int shaft = -1;                     // index into GearTrain::shafts
-  int stage = -1;                     // index into GearTrain::stages (its mesh)
-  double characteristic_hz = 0.0;     // fault frequency: its shaft's rotation frequency
+  int shaft = -1;                  // index into GearTrain::shafts
+  int stage = -1;                  // index into GearTrain::stages (its mesh)
+  double characteristic_hz = 0.0;  // fault frequency: its shaft's rotation frequency
 };
 
 struct TrainKinematics {
@@ -110,8 +110,7 @@ struct GearTrain {
 // Transverse contact ratio of two standard external involute spur gears (module cancels):
 // eps = (sqrt(ra1^2 - rb1^2) + sqrt(ra2^2 - rb2^2) - a sin(alpha)) / (pi cos(alpha)), in units
 // of the module, with r = z/2, ra = r + ha*, rb = r cos(alpha), a = r1 + r2.
-double StandardContactRatio(int z1, int z2, double pressure_angle_deg,
-                            double addendum_coefficient);
+double StandardContactRatio(int z1, int z2, double pressure_angle_deg, double addendum_coefficient);
 
 // Revolutions per minute to Hz and back.
 constexpr double RpmToHz(double rpm) { return rpm / 60.0; }

@@ -29,9 +29,7 @@ class DeterministicRng {
       : engine_(SplitMix64(seed ^ SplitMix64(stream))) {}
 
   // Uniform in [0, 1).
-  double Uniform() noexcept {
-    return static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-  }
+  double Uniform() noexcept { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
 
   // Standard normal (mean 0, variance 1), Box-Muller; the second variate is kept for the
   // next call.

@@ -116,8 +116,7 @@ Result<FaultExcitation> FaultExcitation::Create(const GearTrain& train, double i
   if (fault.type != FaultType::kNone) {
     const int g = train.GearIndex(fault.gear);
     if (g < 0) {
-      return Error{"fault excitation: fault gear '" + fault.gear +
-                   "' is not a gear of the train"};
+      return Error{"fault excitation: fault gear '" + fault.gear + "' is not a gear of the train"};
     }
     const GearKinematics& gk = e.kinematics_.gears[static_cast<std::size_t>(g)];
     const MeshKinematics& mesh = e.kinematics_.meshes[static_cast<std::size_t>(gk.stage)];
@@ -131,7 +130,8 @@ Result<FaultExcitation> FaultExcitation::Create(const GearTrain& train, double i
                    ") for a once-per-revolution fault pulse shorter than a revolution"};
     }
     DeterministicRng tooth(p.seed, kToothStream);
-    const auto damaged_tooth = static_cast<double>(tooth.Below(static_cast<std::uint64_t>(gk.teeth)));
+    const auto damaged_tooth =
+        static_cast<double>(tooth.Below(static_cast<std::uint64_t>(gk.teeth)));
     e.fault_onset_s_ = damaged_tooth * mesh_period;
     e.fault_depth_m_ = shape.depth_factor * p.deflection_scale_m * fault.severity;
     e.fault_taper_ = shape.taper;
@@ -153,7 +153,8 @@ double FaultExcitation::Healthy(int stage, double t_s) const noexcept {
     mesh += amplitude[h] * std::cos(kTwoPi * order * st.mesh_hz * t_s + st.harmonic_phase[h]);
   }
   const double mu = parameters_.shaft_modulation_depth;
-  const double modulation = 1.0 + mu * std::cos(kTwoPi * st.driver_shaft_hz * t_s + st.driver_phase) +
+  const double modulation = 1.0 +
+                            mu * std::cos(kTwoPi * st.driver_shaft_hz * t_s + st.driver_phase) +
                             mu * std::cos(kTwoPi * st.driven_shaft_hz * t_s + st.driven_phase);
   return modulation * mesh;
 }

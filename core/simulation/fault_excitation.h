@@ -75,9 +75,9 @@ FaultShape FaultShapeOf(FaultType type) noexcept;
 
 struct ExcitationParameters {
   std::vector<double> mesh_harmonic_amplitude_m = {1.0e-6, 0.3e-6, 0.1e-6};  // A_1, A_2, ...
-  double shaft_modulation_depth = 0.05;  // mu, [0, 0.5)
-  double deflection_scale_m = 5.0e-6;    // loaded mesh deflection, > 0
-  std::uint64_t seed = 1;                // phases and the angular position of the damaged tooth
+  double shaft_modulation_depth = 0.05;                                      // mu, [0, 0.5)
+  double deflection_scale_m = 5.0e-6;  // loaded mesh deflection, > 0
+  std::uint64_t seed = 1;              // phases and the angular position of the damaged tooth
 };
 
 class FaultExcitation {

@@ -33,8 +33,8 @@ Status CheckTrainMatchesModel(const LumpedGearboxModel& model, const GearTrain& 
   for (std::size_t s = 0; s < stages; ++s) {
     const StageSpec& st = train.stages[s];
     const GearStage& ms = model.parameters().stages[s];
-    const std::string label = "gear train: stages[" + std::to_string(s) + "] (" + st.driver +
-                              "->" + st.driven + ")";
+    const std::string label =
+        "gear train: stages[" + std::to_string(s) + "] (" + st.driver + "->" + st.driven + ")";
     const int sd = train.ShaftOfGear(st.driver);
     const int sn = train.ShaftOfGear(st.driven);
     if (sd != static_cast<int>(s) || sn != static_cast<int>(s) + 1) {
@@ -58,9 +58,8 @@ Status CheckTrainMatchesModel(const LumpedGearboxModel& model, const GearTrain& 
   for (std::size_t b = 0; b < train.bearings.size(); ++b) {
     if (train.ShaftIndex(train.bearings[b].shaft) != static_cast<int>(b)) {
       return Error{"gear train: bearings[" + std::to_string(b) + "] (" + train.bearings[b].name +
-                   ") must support shaft '" + train.shafts[b].name +
-                   "' (model seat " + std::to_string(b) + "), got '" + train.bearings[b].shaft +
-                   "'"};
+                   ") must support shaft '" + train.shafts[b].name + "' (model seat " +
+                   std::to_string(b) + "), got '" + train.bearings[b].shaft + "'"};
     }
   }
   return Status::Ok();
@@ -90,8 +89,8 @@ Result<GearboxSimulator> GearboxSimulator::Create(const LumpedGearboxModel& mode
   const double period_s = static_cast<double>(*revolutions) / c.input_speed_hz;
   const double exact_samples = period_s * c.sample_rate_hz;
   if (exact_samples > static_cast<double>(c.max_period_samples)) {
-    return Error{"simulator: the common period of all shafts (" + Num(period_s) + " s = " +
-                 Num(exact_samples) + " samples) exceeds max_period_samples (" +
+    return Error{"simulator: the common period of all shafts (" + Num(period_s) +
+                 " s = " + Num(exact_samples) + " samples) exceeds max_period_samples (" +
                  std::to_string(c.max_period_samples) + "); raise the speed or the limit"};
   }
   const auto n = static_cast<std::size_t>(std::llround(exact_samples));
@@ -99,8 +98,8 @@ Result<GearboxSimulator> GearboxSimulator::Create(const LumpedGearboxModel& mode
     return Error{"simulator: the common period of all shafts is only " + Num(exact_samples) +
                  " samples at sample_rate_hz " + Num(c.sample_rate_hz) + "; raise the sample rate"};
   }
-  const double speed_hz = static_cast<double>(*revolutions) * c.sample_rate_hz /
-                          static_cast<double>(n);
+  const double speed_hz =
+      static_cast<double>(*revolutions) * c.sample_rate_hz / static_cast<double>(n);
 
   ExcitationParameters excitation_parameters = c.excitation;
   excitation_parameters.seed = c.seed;
@@ -146,7 +145,8 @@ Result<GearboxSimulator> GearboxSimulator::Create(const LumpedGearboxModel& mode
   const bool has_nyquist = n % 2 == 0;
 
   // response(k) = T(k) E(k) for one output row of a transfer, then back to time.
-  const auto synthesize = [&](const FrfMatrix& t, Eigen::Index row, Eigen::Ref<Eigen::VectorXd> dst) {
+  const auto synthesize = [&](const FrfMatrix& t, Eigen::Index row,
+                              Eigen::Ref<Eigen::VectorXd> dst) {
     std::span<std::complex<double>> in = backward->complex_in();
     for (Eigen::Index k = 0; k < bins; ++k) {
       std::complex<double> y = 0.0;

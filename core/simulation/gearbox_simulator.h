@@ -51,18 +51,18 @@ namespace gearpath {
 
 struct SimulatorConfig {
   std::string machine_id = "sim";
-  GearFault fault;                       // type kNone = healthy
-  double input_speed_hz = 10.0;          // 600 r/min (seed Sec. 4)
-  double sample_rate_hz = 8000.0;        // the seed's DH8303 setting
-  std::uint32_t block_length = 8192;     // samples per channel and block, >= 1
-  double noise_relative = 0.0;           // noise std / noise-free RMS per channel, >= 0
-  std::uint64_t seed = 1;                // excitation phases, damaged tooth, noise
-  bool report_speed = true;              // blocks carry speed_hz, SpeedSource::kAcquisition
-  bool include_housing_channel = true;   // append "m1" (central housing mass)
-  std::int64_t start_time_ns = 0;        // t0 of the first block, ns since the Unix epoch
+  GearFault fault;                      // type kNone = healthy
+  double input_speed_hz = 10.0;         // 600 r/min (seed Sec. 4)
+  double sample_rate_hz = 8000.0;       // the seed's DH8303 setting
+  std::uint32_t block_length = 8192;    // samples per channel and block, >= 1
+  double noise_relative = 0.0;          // noise std / noise-free RMS per channel, >= 0
+  std::uint64_t seed = 1;               // excitation phases, damaged tooth, noise
+  bool report_speed = true;             // blocks carry speed_hz, SpeedSource::kAcquisition
+  bool include_housing_channel = true;  // append "m1" (central housing mass)
+  std::int64_t start_time_ns = 0;       // t0 of the first block, ns since the Unix epoch
   std::uint64_t first_sequence = 0;
   std::size_t max_period_samples = std::size_t{1} << 23;  // refuse longer common periods
-  ExcitationParameters excitation;       // its seed is overridden by `seed`
+  ExcitationParameters excitation;                        // its seed is overridden by `seed`
 };
 
 // Empty status when the train describes the model (see the file comment).
@@ -84,7 +84,9 @@ class GearboxSimulator {
   // One noise-free period (rows = samples, period_samples() of them). Accelerations: one
   // column per channel (channels() order); bearing forces: one column per seat; TE: one
   // column per stage, mean removed, m.
-  std::size_t period_samples() const noexcept { return static_cast<std::size_t>(acceleration_.rows()); }
+  std::size_t period_samples() const noexcept {
+    return static_cast<std::size_t>(acceleration_.rows());
+  }
   const Eigen::MatrixXd& periodic_acceleration() const noexcept { return acceleration_; }
   const Eigen::MatrixXd& periodic_bearing_force() const noexcept { return bearing_force_; }
   const Eigen::MatrixXd& periodic_transmission_error() const noexcept { return te_; }

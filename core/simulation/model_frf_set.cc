@@ -19,8 +19,8 @@ Result<FrfSet> MakeModelFrfSet(const LumpedGearboxModel& model, const GearTrain&
   for (Eigen::Index k = 0; k < frequency_hz.size(); ++k) {
     const double f = frequency_hz(k);
     if (!std::isfinite(f) || f <= 0.0 || (k > 0 && f <= frequency_hz(k - 1))) {
-      return Error{"model FRF set: frequency_hz[" + std::to_string(k) + "] = " +
-                   std::to_string(f) + " Hz: the grid must be finite, > 0 and strictly increasing"};
+      return Error{"model FRF set: frequency_hz[" + std::to_string(k) + "] = " + std::to_string(f) +
+                   " Hz: the grid must be finite, > 0 and strictly increasing"};
     }
   }
   const int seats = model.rotor_count();
@@ -58,8 +58,7 @@ Result<FrfSet> MakeModelFrfSet(const LumpedGearboxModel& model, const GearTrain&
                                               : DecoupleAtMeasurementPoints(*blocks);
       if (!d.ok()) return Error{"model FRF set: " + d.error()};
       set.decoupled = std::move(d->decoupled);
-      set.decoupling =
-          options.decoupling == ModelFrfDecoupling::kVirtualEq22 ? "eq22" : "eq24";
+      set.decoupling = options.decoupling == ModelFrfDecoupling::kVirtualEq22 ? "eq22" : "eq24";
       break;
     }
     case ModelFrfDecoupling::kPhysicalPp:
@@ -78,7 +77,8 @@ Result<FrfSet> MakeModelFrfSet(const LumpedGearboxModel& model, const GearTrain&
     CoupledSet coupled;
     for (int r = 0; r < seats; ++r) {
       const std::string i = std::to_string(r + 1);
-      coupled.active.push_back({"a" + i + "x", "rotor " + train.shafts[static_cast<std::size_t>(r)].name, "x"});
+      coupled.active.push_back(
+          {"a" + i + "x", "rotor " + train.shafts[static_cast<std::size_t>(r)].name, "x"});
       coupled.passive.push_back({"p" + i + "x", "p" + i, "x"});
     }
     if (blocks->has_measurement_points()) coupled.measurement.push_back({"m1x", "m1", "x"});

@@ -17,8 +17,7 @@ struct RandomCase {
   Eigen::MatrixXcd forces;
 };
 
-RandomCase MakeRandom(Eigen::Index channels, Eigen::Index paths, Eigen::Index bins,
-                      unsigned seed) {
+RandomCase MakeRandom(Eigen::Index channels, Eigen::Index paths, Eigen::Index bins, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> n(0.0, 1.0);
   RandomCase r;
@@ -32,8 +31,7 @@ RandomCase MakeRandom(Eigen::Index channels, Eigen::Index paths, Eigen::Index bi
   return r;
 }
 
-PathContributions MakeContributions(Eigen::Index channels, Eigen::Index paths,
-                                    Eigen::Index bins) {
+PathContributions MakeContributions(Eigen::Index channels, Eigen::Index paths, Eigen::Index bins) {
   Result<PathContributions> c = PathContributions::Create(channels, paths, bins);
   EXPECT_TRUE(c.ok()) << c.error();
   return std::move(c).value();

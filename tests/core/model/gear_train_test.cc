@@ -32,8 +32,7 @@ TEST_P(GearTrainTable6Test, ShaftFrequenciesMatchTheSeedsTable6) {
 
 INSTANTIATE_TEST_SUITE_P(SeedSpeeds, GearTrainTable6Test,
                          ::testing::Values(Table6Row{600, 10.0, 7.0}, Table6Row{500, 8.33, 5.83},
-                                           Table6Row{400, 6.67, 4.669},
-                                           Table6Row{300, 5.0, 3.5}));
+                                           Table6Row{400, 6.67, 4.669}, Table6Row{300, 5.0, 3.5}));
 
 TEST(GearTrainTest, MeshFrequenciesAt600RpmAre280And238Hz) {
   const Result<TrainKinematics> k = GearTrain::Table1().Kinematics(10.0);
@@ -161,8 +160,9 @@ TEST(GearTrainValidationTest, RejectsStageWithUnknownGearOrBothGearsOnOneShaft) 
   EXPECT_EQ(WhyInvalid(t), "stages[1] (G3->G7): unknown gear 'G7'");
   t = GearTrain::Table1();
   t.stages = {{"G1", "G2"}, {"G2", "G3"}};
-  EXPECT_EQ(WhyInvalid(t), "gears[1] (G2): meshes in two stages (0 and 1); idler gears are not "
-                           "supported");
+  EXPECT_EQ(WhyInvalid(t),
+            "gears[1] (G2): meshes in two stages (0 and 1); idler gears are not "
+            "supported");
 }
 
 TEST(GearTrainValidationTest, RejectsShaftNotDrivenFromTheInput) {
@@ -173,8 +173,9 @@ TEST(GearTrainValidationTest, RejectsShaftNotDrivenFromTheInput) {
   t.shafts[3].gears = {"G5"};
   t.shafts.push_back({"spare2", {"G6"}});
   t.stages.push_back({"G5", "G6"});
-  EXPECT_EQ(WhyInvalid(t), "shafts[3] (spare): not connected to the input shaft through any "
-                           "stage, so its speed is unknown");
+  EXPECT_EQ(WhyInvalid(t),
+            "shafts[3] (spare): not connected to the input shaft through any "
+            "stage, so its speed is unknown");
 }
 
 TEST(GearTrainValidationTest, RejectsDuplicateNamesAndEmptyLists) {

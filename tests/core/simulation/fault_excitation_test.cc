@@ -135,8 +135,8 @@ TEST(FaultExcitationTest, PulseEnergyMatchesTheTaperedBoxIntegralAndIsOrderedByF
       sum += std::pow(e.Fault(0, t), 2) / fine_fs;
     }
     const FaultShape shape = FaultShapeOf(type);
-    const double analytic = e.fault_depth_m() * e.fault_depth_m() * e.fault_length_s() *
-                            (1.0 - 1.25 * shape.taper);
+    const double analytic =
+        e.fault_depth_m() * e.fault_depth_m() * e.fault_length_s() * (1.0 - 1.25 * shape.taper);
     EXPECT_NEAR(sum, analytic, 1e-3 * analytic) << FaultTypeName(type);
     energy[static_cast<int>(type)] = sum;
   }

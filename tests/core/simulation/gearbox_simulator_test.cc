@@ -25,14 +25,12 @@ const LumpedGearboxModel& Table1Model() {
 }
 
 GearboxSimulator MakeSimulator(const SimulatorConfig& config) {
-  Result<GearboxSimulator> s =
-      GearboxSimulator::Create(Table1Model(), GearTrain::Table1(), config);
+  Result<GearboxSimulator> s = GearboxSimulator::Create(Table1Model(), GearTrain::Table1(), config);
   EXPECT_TRUE(s.ok()) << s.error();
   return std::move(s).value();
 }
 
-SimulatorConfig FaultyConfig(FaultType type = FaultType::kToothFracture,
-                             const char* gear = "G1") {
+SimulatorConfig FaultyConfig(FaultType type = FaultType::kToothFracture, const char* gear = "G1") {
   SimulatorConfig c;
   c.fault = {type, gear, 1.0};
   c.seed = 42;
@@ -52,7 +50,8 @@ Complex Dft(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Index k) {
 
 // All one-sided bins of x by FFT.
 Eigen::VectorXcd Spectrum(const Eigen::Ref<const Eigen::VectorXd>& x) {
-  Result<FftPlan> plan = FftPlan::Create(FftKind::kRealToComplex, static_cast<std::size_t>(x.size()));
+  Result<FftPlan> plan =
+      FftPlan::Create(FftKind::kRealToComplex, static_cast<std::size_t>(x.size()));
   EXPECT_TRUE(plan.ok());
   std::copy(x.data(), x.data() + x.size(), plan->real_in().begin());
   plan->Execute();
@@ -101,7 +100,8 @@ TEST(GearboxSimulatorTest, NoiseFreeAccelerationsEqualTheModelsForcedResponseAtE
     for (int seat = 0; seat < 3; ++seat) {
       const Complex want = r->acceleration(model.SeatDof(seat));
       const Complex got = Dft(sim.periodic_acceleration().col(seat), k);
-      EXPECT_LE(std::abs(got - want), 1e-9 * std::abs(want) + floor_x[static_cast<std::size_t>(seat)])
+      EXPECT_LE(std::abs(got - want),
+                1e-9 * std::abs(want) + floor_x[static_cast<std::size_t>(seat)])
           << f << " Hz seat " << seat;
       const Complex want_f = r->bearing_force(seat);
       const Complex got_f = Dft(sim.periodic_bearing_force().col(seat), k);
@@ -126,11 +126,12 @@ TEST(GearboxSimulatorTest, TrueBearingForcesSatisfyTheHousingFrfIdentityAtEveryB
   for (int c = 0; c < 4; ++c) x.push_back(Spectrum(sim.periodic_acceleration().col(c)));
   for (int b = 0; b < 3; ++b) f.push_back(Spectrum(sim.periodic_bearing_force().col(b)));
   double largest = 0.0;  // round-off floor: 1e-12 of the largest response line
-  for (int c = 0; c < 4; ++c) largest = std::max(largest, x[static_cast<std::size_t>(c)].cwiseAbs().maxCoeff());
+  for (int c = 0; c < 4; ++c)
+    largest = std::max(largest, x[static_cast<std::size_t>(c)].cwiseAbs().maxCoeff());
   double worst = 0.0;
   for (Eigen::Index k = 1; k < n / 2; ++k) {
-    const double w = 2.0 * std::numbers::pi * static_cast<double>(k) * 8000.0 /
-                     static_cast<double>(n);
+    const double w =
+        2.0 * std::numbers::pi * static_cast<double>(k) * 8000.0 / static_cast<double>(n);
     const Eigen::MatrixXcd dyn = model.housing_stiffness().cast<Complex>() -
                                  w * w * model.housing_mass().cast<Complex>() +
                                  Complex(0.0, w) * model.housing_damping().cast<Complex>();

@@ -77,14 +77,14 @@ TEST(ModelFrfSetTest, VirtualDecouplingOfTheModelEqualsThePhysicallyDecoupledHou
   ASSERT_EQ(eq24.channels.size(), 1u);
   EXPECT_EQ(eq24.channels[0].sensor, "m1");
   EXPECT_EQ(eq24.decoupled.outputs(), 1);
-  EXPECT_LT(MaxRelativeDifference(eq24.decoupled,
-                                  Make(ModelFrfDecoupling::kPhysicalMp, freq).decoupled),
-            1e-8);
+  EXPECT_LT(
+      MaxRelativeDifference(eq24.decoupled, Make(ModelFrfDecoupling::kPhysicalMp, freq).decoupled),
+      1e-8);
   // Reciprocity instead of a measured H_ap gives the same result (the model is symmetric).
   const FrfSet no_ap = Make(ModelFrfDecoupling::kVirtualEq22, freq, true, false);
-  EXPECT_LT(MaxRelativeDifference(no_ap.decoupled,
-                                  Make(ModelFrfDecoupling::kPhysicalPp, freq).decoupled),
-            1e-8);
+  EXPECT_LT(
+      MaxRelativeDifference(no_ap.decoupled, Make(ModelFrfDecoupling::kPhysicalPp, freq).decoupled),
+      1e-8);
 }
 
 TEST(ModelFrfSetTest, CoupledBlocksCarryTheRolesOfEveryDof) {
@@ -130,7 +130,8 @@ TEST(ModelFrfSetTest, SimulatedSeatAccelerationsEqualTheSetsFrfTimesTheTrueBeari
   ASSERT_TRUE(sim.ok()) << sim.error();
   const auto n = static_cast<Eigen::Index>(sim->period_samples());
   Eigen::VectorXd freq(n / 2 - 1);
-  for (Eigen::Index k = 1; k < n / 2; ++k) freq(k - 1) = static_cast<double>(k) * 8000.0 / static_cast<double>(n);
+  for (Eigen::Index k = 1; k < n / 2; ++k)
+    freq(k - 1) = static_cast<double>(k) * 8000.0 / static_cast<double>(n);
   const FrfSet set = Make(ModelFrfDecoupling::kVirtualEq22, freq);
   Result<FftPlan> plan = FftPlan::Create(FftKind::kRealToComplex, static_cast<std::size_t>(n));
   ASSERT_TRUE(plan.ok());
@@ -163,8 +164,9 @@ TEST(ModelFrfSetValidationTest, RejectsGridsWithZeroOrDecreasingFrequencies) {
   freq << 0.0, 10.0, 20.0;
   Result<FrfSet> r = MakeModelFrfSet(Table1Model(), GearTrain::Table1(), freq);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.error(), "model FRF set: frequency_hz[0] = 0.000000 Hz: the grid must be finite, "
-                       "> 0 and strictly increasing");
+  EXPECT_EQ(r.error(),
+            "model FRF set: frequency_hz[0] = 0.000000 Hz: the grid must be finite, "
+            "> 0 and strictly increasing");
   freq << 5.0, 10.0, 10.0;
   r = MakeModelFrfSet(Table1Model(), GearTrain::Table1(), freq);
   ASSERT_FALSE(r.ok());
