@@ -60,7 +60,7 @@ Result<Table1ValidationResult> ValidateOnTable1Model(const Table1ValidationOptio
                          bool housing_rows) -> Status {
     for (Eigen::Index i = 0; i < v.outputs(); ++i) {
       for (Eigen::Index j = 0; j < v.inputs(); ++j) {
-        const Eigen::Index label_i = housing_rows ? 3 + seats : 4 + i;
+        const Eigen::Index label_i = housing_rows ? 4 + seats : 4 + i;
         Result<double> frac = Frac(grid, Entry(v, i, j), Entry(p, i, j), options.f_lo_hz,
                                    options.f_hi_hz);
         if (!frac) return Error{frac.error()};
@@ -130,7 +130,11 @@ Result<Table1ValidationResult> ValidateOnTable1Model(const Table1ValidationOptio
   }
   result.noise_free_error_mwi = (estimate - forces).norm() / forces.norm();
 
-  const Eigen::VectorXd channel_rms = x.rowwise().norm() / std::sqrt(static_cast<double>(x.cols()));
+  // Noise scale per bin: the RMS over channels of that bin's response. (A scale fixed over the
+  // band would bury the low-frequency bins, where accelerations ~ w^2 are tiny but the mesh
+  // forces are not, under noise many times their size.)
+  const Eigen::VectorXd bin_rms =
+      x.colwise().norm().transpose() / std::sqrt(static_cast<double>(x.rows()));
   std::mt19937_64 engine(options.seed);
   std::normal_distribution<double> normal(0.0, std::sqrt(0.5));  // E|n|^2 = 1 for re + j im
   result.noise_levels = options.noise_levels;
@@ -140,7 +144,7 @@ Result<Table1ValidationResult> ValidateOnTable1Model(const Table1ValidationOptio
     for (int d = 0; d < options.draws; ++d) {
       for (Eigen::Index k = 0; k < x.cols(); ++k) {
         for (Eigen::Index i = 0; i < x.rows(); ++i) {
-          noisy(i, k) = x(i, k) + options.noise_levels[l] * channel_rms(i) *
+          noisy(i, k) = x(i, k) + options.noise_levels[l] * bin_rms(k) *
                                       Complex(normal(engine), normal(engine));
         }
       }

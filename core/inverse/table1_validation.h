@@ -8,7 +8,7 @@
 // Identification: mesh-excited bearing forces (Eq. 44) from the model; responses x = seat and
 // housing accelerations; system [H_d,pp; H_d,mp] (4 x 3, overdetermined so GCV is well posed,
 // see regularisation_rule.h); noise: independent complex Gaussian per channel and bin with
-// E|n|^2 = (level * RMS over bins of that channel's response)^2, `draws` draws from a fixed
+// E|n|^2 = (level * RMS over channels of that bin's response)^2, `draws` draws from a fixed
 // seed; error = ||F_hat - F||_F / ||F||_F over all bins and paths, averaged over draws.
 #pragma once
 

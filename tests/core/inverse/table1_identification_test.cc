@@ -6,6 +6,7 @@
 
 #include "core/frf/virtual_decoupling.h"
 #include "core/inverse/identification_operator.h"
+#include "core/inverse/table1_validation.h"
 #include "core/model/lumped_gearbox_model.h"
 
 namespace gearpath {
@@ -76,6 +77,34 @@ TEST(Table1Identification, RecoversTheBearingForcesFromVirtuallyDecoupledFrfsNoi
     EXPECT_LT(IdentificationError(*system, x, c.forces, tikhonov), 1e-8) << "Tikhonov " << name;
     EXPECT_LT(IdentificationError(*system, x, c.forces, ls), 1e-8) << "LS " << name;
   }
+}
+
+}  // namespace
+}  // namespace gearpath
+
+namespace gearpath {
+namespace {
+
+TEST(Table1Validation, DecouplingIsExactAndIdentificationErrorGrowsWithNoise) {
+  Table1ValidationOptions o;
+  o.draws = 2;
+  o.bins = 100;
+  Result<Table1ValidationResult> r = ValidateOnTable1Model(o);
+  ASSERT_TRUE(r.ok()) << r.error();
+  ASSERT_EQ(r->decoupling.size(), 3u + 9u);  // H_47, H_57, H_67 and the 3 x 3 H_d,pp
+  EXPECT_EQ(r->decoupling[0].entry, "H_74");
+  for (const DecouplingEntryError& e : r->decoupling) {
+    EXPECT_LT(e.max_relative_error, 1e-9) << e.system << " " << e.entry;
+    EXPECT_NEAR(e.frac, 1.0, 1e-9);
+  }
+  EXPECT_LT(r->noise_free_error_mwi, 1e-10);
+  for (const IdentificationMethodResult& m : r->methods) {
+    ASSERT_EQ(m.mean_error.size(), 3u);
+    EXPECT_LT(m.mean_error[0], m.mean_error[1]) << m.name;
+    EXPECT_LT(m.mean_error[1], m.mean_error[2]) << m.name;
+  }
+  o.draws = 0;
+  EXPECT_NE(ValidateOnTable1Model(o).error().find("draws"), std::string::npos);
 }
 
 }  // namespace
