@@ -7,7 +7,8 @@ int main(int argc, char** argv) {
   CLI::App app{"gearpath: gearbox fault tracing by transfer path analysis - tools"};
   app.require_subcommand(1);
   int exit_code = gearpath::tools::kExitOk;
-  // Subcommands register here, one line each (validate lands with core/inverse's tables).
+  // Subcommands register here, one line each.
+  gearpath::tools::AddValidateCommand(app, exit_code);
   gearpath::tools::AddMonitorCommand(app, exit_code);
   gearpath::tools::AddRecordCommand(app, exit_code);
   gearpath::tools::AddReplayCommand(app, exit_code);
