@@ -53,11 +53,11 @@ FaultShape FaultShapeOf(FaultType type) noexcept {
     case FaultType::kNone:
       return {0.0, 0.0, 0.5};
     case FaultType::kChippedTooth:
-      return {0.5, 0.5, 0.2};
+      return {0.5, 0.5, 0.35};
     case FaultType::kLocalizedWear:
       return {0.25, 1.0, 0.5};
     case FaultType::kToothFracture:
-      return {1.0, 1.0, 0.1};
+      return {1.0, 1.0, 0.2};
   }
   return {0.0, 0.0, 0.5};
 }
@@ -84,6 +84,13 @@ Result<FaultExcitation> FaultExcitation::Create(const GearTrain& train, double i
   if (!(p.deflection_scale_m > 0.0) || !std::isfinite(p.deflection_scale_m)) {
     return Error{"fault excitation: deflection_scale_m must be finite and > 0, got " +
                  std::to_string(p.deflection_scale_m)};
+  }
+  if (p.shape &&
+      !(p.shape->depth_factor >= 0.0 && p.shape->length_factor > 0.0 &&
+        p.shape->length_factor <= 2.0 && p.shape->taper > 0.0 && p.shape->taper <= 0.5)) {
+    return Error{
+        "fault excitation: shape must have depth_factor >= 0, length_factor in (0, 2] "
+        "and taper in (0, 0.5]"};
   }
   if (!(fault.severity >= 0.0) || !std::isfinite(fault.severity)) {
     return Error{"fault excitation: fault severity must be finite and >= 0, got " +
@@ -120,7 +127,7 @@ Result<FaultExcitation> FaultExcitation::Create(const GearTrain& train, double i
     }
     const GearKinematics& gk = e.kinematics_.gears[static_cast<std::size_t>(g)];
     const MeshKinematics& mesh = e.kinematics_.meshes[static_cast<std::size_t>(gk.stage)];
-    const FaultShape shape = FaultShapeOf(fault.type);
+    const FaultShape shape = p.shape.value_or(FaultShapeOf(fault.type));
     const double mesh_period = 1.0 / mesh.mesh_hz;
     e.fault_period_s_ = 1.0 / gk.characteristic_hz;  // = teeth * mesh period
     e.fault_length_s_ = shape.length_factor * mesh.contact_ratio * mesh_period;

@@ -210,6 +210,22 @@ TEST(FaultExcitationTest, SameSeedGivesTheSameSignalAndAnotherSeedAnother) {
   EXPECT_NE(xa, xc);
 }
 
+TEST(FaultExcitationTest, ShapeOverrideReplacesTheTableAndIsValidated) {
+  ExcitationParameters p;
+  p.shape = FaultShape{2.0, 0.5, 0.5};
+  Result<FaultExcitation> e =
+      FaultExcitation::Create(GearTrain::Table1(), 10.0, {FaultType::kLocalizedWear, "G1"}, p);
+  ASSERT_TRUE(e.ok()) << e.error();
+  EXPECT_DOUBLE_EQ(e->fault_depth_m(), 2.0 * p.deflection_scale_m);
+  EXPECT_NEAR(e->fault_length_s(), 0.5 * 1.676 / 280.0, 1e-3 / 280.0);
+  p.shape = FaultShape{1.0, 1.0, 0.0};
+  e = FaultExcitation::Create(GearTrain::Table1(), 10.0, {FaultType::kLocalizedWear, "G1"}, p);
+  ASSERT_FALSE(e.ok());
+  EXPECT_EQ(e.error(),
+            "fault excitation: shape must have depth_factor >= 0, length_factor in (0, 2] and "
+            "taper in (0, 0.5]");
+}
+
 TEST(FaultExcitationTest, FaultTypeNamesRoundTrip) {
   for (FaultType t : {FaultType::kNone, FaultType::kChippedTooth, FaultType::kLocalizedWear,
                       FaultType::kToothFracture}) {

@@ -297,6 +297,29 @@ TEST(GearboxSimulatorTest, FaultAddsShaftRateLinesThatHealthyLacksButMeshLinesDo
   }
 }
 
+TEST(GearboxSimulatorTest, FaultRaisesKurtosisInSeverityOrderWithoutDominatingTheLevel) {
+  // Realism contract of the default fault shapes (fault_excitation.h): at the G1 seat the
+  // fracture is more impulsive than the chipped tooth, both more than healthy, and no fault
+  // raises the RMS by more than 50 %.
+  const auto moments = [](FaultType type) {
+    const GearboxSimulator sim = MakeSimulator(FaultyConfig(type, "G1"));
+    const Eigen::ArrayXd x = sim.periodic_acceleration().col(0).array();
+    const double m2 = x.square().mean();
+    return std::pair<double, double>{std::sqrt(m2), x.pow(4).mean() / (m2 * m2)};
+  };
+  const auto [rms_h, kurt_h] = moments(FaultType::kNone);
+  const auto [rms_w, kurt_w] = moments(FaultType::kLocalizedWear);
+  const auto [rms_c, kurt_c] = moments(FaultType::kChippedTooth);
+  const auto [rms_f, kurt_f] = moments(FaultType::kToothFracture);
+  EXPECT_GT(kurt_f, kurt_c);
+  EXPECT_GT(kurt_c, kurt_h);
+  EXPECT_GE(kurt_w, 0.99 * kurt_h);
+  for (double rms : {rms_w, rms_c, rms_f}) {
+    EXPECT_GE(rms, 0.99 * rms_h);
+    EXPECT_LT(rms, 1.5 * rms_h);
+  }
+}
+
 TEST(GearboxSimulatorValidationTest, RejectsBadConfigurationNamingTheField) {
   const LumpedGearboxModel& model = Table1Model();
   const GearTrain train = GearTrain::Table1();
