@@ -47,8 +47,7 @@ json ManifestOf(const RecordingLayout& layout, const std::vector<RecordedBlockIn
                         {"unit", c.unit},
                         {"sensitivity_mv_per_unit", DoubleJson(c.sensitivity)}});
   }
-  json sequence = json::array(), t0 = json::array(), speed = json::array(),
-       source = json::array();
+  json sequence = json::array(), t0 = json::array(), speed = json::array(), source = json::array();
   for (const RecordedBlockInfo& b : blocks) {
     sequence.push_back(b.sequence);
     t0.push_back(b.t0_ns);
@@ -91,8 +90,8 @@ Status WriteManifest(const std::filesystem::path& dir, const json& manifest) {
 
 std::string LayoutMismatch(const RecordingLayout& layout, const AccelBlockView& block) {
   if (block.machine_id != layout.machine_id) {
-    return "machine_id " + Quoted(std::string(block.machine_id)) + " differs from the recording's " +
-           Quoted(layout.machine_id);
+    return "machine_id " + Quoted(std::string(block.machine_id)) +
+           " differs from the recording's " + Quoted(layout.machine_id);
   }
   if (std::bit_cast<std::uint64_t>(block.sample_rate_hz) !=
       std::bit_cast<std::uint64_t>(layout.sample_rate_hz)) {
@@ -111,7 +110,8 @@ std::string LayoutMismatch(const RecordingLayout& layout, const AccelBlockView& 
     const ChannelInfo& a = block.channels[c];
     const ChannelInfo& b = layout.channels[c];
     if (a.sensor != b.sensor || a.axis != b.axis || a.unit != b.unit ||
-        std::bit_cast<std::uint64_t>(a.sensitivity) != std::bit_cast<std::uint64_t>(b.sensitivity)) {
+        std::bit_cast<std::uint64_t>(a.sensitivity) !=
+            std::bit_cast<std::uint64_t>(b.sensitivity)) {
       return "channels[" + std::to_string(c) + "] differs from the recording's";
     }
   }
@@ -131,10 +131,9 @@ class ManifestReader {
       error_ = file_ + ": missing key " + Quoted(path);
       return nullptr;
     }
-    const bool ok = type == json::value_t::number_float
-                        ? (it->is_number() || it->is_null())
-                        : type == json::value_t::number_unsigned ? it->is_number_unsigned()
-                                                                 : it->type() == type;
+    const bool ok = type == json::value_t::number_float      ? (it->is_number() || it->is_null())
+                    : type == json::value_t::number_unsigned ? it->is_number_unsigned()
+                                                             : it->type() == type;
     if (!ok) {
       error_ = file_ + ": " + path + " has the wrong type (" + it->type_name() + ")";
       return nullptr;
@@ -162,9 +161,12 @@ double AsDouble(const json& j) {
 
 const char* AxisName(Axis axis) noexcept {
   switch (axis) {
-    case Axis::kX: return "x";
-    case Axis::kY: return "y";
-    case Axis::kZ: return "z";
+    case Axis::kX:
+      return "x";
+    case Axis::kY:
+      return "y";
+    case Axis::kZ:
+      return "z";
   }
   return "x";
 }
@@ -178,10 +180,14 @@ Result<Axis> ParseAxisName(const std::string& name) {
 
 const char* SpeedSourceName(SpeedSource source) noexcept {
   switch (source) {
-    case SpeedSource::kUnknown: return "unknown";
-    case SpeedSource::kAcquisition: return "acquisition";
-    case SpeedSource::kConfiguration: return "configuration";
-    case SpeedSource::kEstimated: return "estimated";
+    case SpeedSource::kUnknown:
+      return "unknown";
+    case SpeedSource::kAcquisition:
+      return "acquisition";
+    case SpeedSource::kConfiguration:
+      return "configuration";
+    case SpeedSource::kEstimated:
+      return "estimated";
   }
   return "unknown";
 }
@@ -191,8 +197,10 @@ Result<SpeedSource> ParseSpeedSourceName(const std::string& name) {
                         SpeedSource::kConfiguration, SpeedSource::kEstimated}) {
     if (name == SpeedSourceName(s)) return s;
   }
-  return Error{"speed source must be \"unknown\", \"acquisition\", \"configuration\" or "
-               "\"estimated\", got " + Quoted(name)};
+  return Error{
+      "speed source must be \"unknown\", \"acquisition\", \"configuration\" or "
+      "\"estimated\", got " +
+      Quoted(name)};
 }
 
 AccelBlockView Recording::block(std::size_t i) const {
@@ -249,18 +257,19 @@ Result<Recording> ReadRecording(const std::filesystem::path& dir) {
     return Error{mf + ": format: expected " + Quoted(kRecordingFormatName) + ", got " +
                  Quoted(format->get<std::string>())};
   }
-  const json* version = r.Get(root, "format_version", "format_version",
-                              json::value_t::number_unsigned);
+  const json* version =
+      r.Get(root, "format_version", "format_version", json::value_t::number_unsigned);
   if (!r.ok()) return r.error();
   if (version->get<long long>() != kRecordingFormatVersion) {
-    return Error{mf + ": format_version " + version->dump() + " is not supported (this build reads " +
-                 std::to_string(kRecordingFormatVersion) + ")"};
+    return Error{mf + ": format_version " + version->dump() +
+                 " is not supported (this build reads " + std::to_string(kRecordingFormatVersion) +
+                 ")"};
   }
   Recording rec;
   const json* machine = r.Get(root, "machine_id", "machine_id", json::value_t::string);
   const json* rate = r.Get(root, "sample_rate_hz", "sample_rate_hz", json::value_t::number_float);
-  const json* length = r.Get(root, "samples_per_channel", "samples_per_channel",
-                             json::value_t::number_unsigned);
+  const json* length =
+      r.Get(root, "samples_per_channel", "samples_per_channel", json::value_t::number_unsigned);
   const json* channels = r.Get(root, "channels", "channels", json::value_t::array);
   const json* blocks = r.Get(root, "blocks", "blocks", json::value_t::object);
   if (!r.ok()) return r.error();
@@ -298,8 +307,9 @@ Result<Recording> ReadRecording(const std::filesystem::path& dir) {
   const json* source = r.Get(*blocks, "speed_source", "blocks.speed_source", json::value_t::array);
   if (!r.ok()) return r.error();
   const std::size_t n = count->get<std::size_t>();
-  for (const auto& [name, arr] : {std::pair{"sequence", seq}, std::pair{"t0_ns", t0},
-                                  std::pair{"speed_hz", speed}, std::pair{"speed_source", source}}) {
+  for (const auto& [name, arr] :
+       {std::pair{"sequence", seq}, std::pair{"t0_ns", t0}, std::pair{"speed_hz", speed},
+        std::pair{"speed_source", source}}) {
     if (arr->size() != n) {
       return Error{mf + ": blocks." + name + " has " + std::to_string(arr->size()) +
                    " entries but blocks.count is " + std::to_string(n)};
@@ -312,9 +322,11 @@ Result<Recording> ReadRecording(const std::filesystem::path& dir) {
     const json& jt = (*t0)[i];
     const json& jv = (*speed)[i];
     const json& jsrc = (*source)[i];
-    if (!js.is_number_unsigned()) return Error{mf + ": blocks.sequence" + at + " is not an unsigned integer"};
+    if (!js.is_number_unsigned())
+      return Error{mf + ": blocks.sequence" + at + " is not an unsigned integer"};
     if (!jt.is_number_integer()) return Error{mf + ": blocks.t0_ns" + at + " is not an integer"};
-    if (!jv.is_number() && !jv.is_null()) return Error{mf + ": blocks.speed_hz" + at + " is not a number"};
+    if (!jv.is_number() && !jv.is_null())
+      return Error{mf + ": blocks.speed_hz" + at + " is not a number"};
     if (!jsrc.is_string()) return Error{mf + ": blocks.speed_source" + at + " is not a string"};
     Result<SpeedSource> src = ParseSpeedSourceName(jsrc.get<std::string>());
     if (!src) return Error{mf + ": blocks.speed_source" + at + ": " + src.error()};
@@ -374,8 +386,7 @@ Result<std::unique_ptr<RecordingWriter>> RecordingWriter::Open(const std::filesy
   const auto path = dir / kRecordingSamplesName;
   w->samples_.open(path, std::ios::binary | std::ios::trunc);
   if (!w->samples_) return Error{path.string() + ": cannot open for writing"};
-  const std::string header =
-      NpyHeaderBytes(0, layout.channels.size(), layout.samples_per_channel);
+  const std::string header = NpyHeaderBytes(0, layout.channels.size(), layout.samples_per_channel);
   w->samples_.write(header.data(), static_cast<std::streamsize>(header.size()));
   if (!w->samples_) return Error{path.string() + ": write error"};
   return w;

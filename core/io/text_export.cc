@@ -16,7 +16,8 @@ std::string Trim(std::string_view s) {
   while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
   while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
   std::string out(s.substr(b, e - b));
-  if (out.size() >= 2 && out.front() == '"' && out.back() == '"') out = out.substr(1, out.size() - 2);
+  if (out.size() >= 2 && out.front() == '"' && out.back() == '"')
+    out = out.substr(1, out.size() - 2);
   return out;
 }
 
@@ -77,9 +78,9 @@ bool LooksLikeUnit(std::string f) {
   if (f.empty() || f == "-") return true;
   if ((f.front() == '[' && f.back() == ']') || (f.front() == '(' && f.back() == ')')) return true;
   const std::string l = Lower(f);
-  static const char* const kUnits[] = {"g", "s", "ms", "hz", "v", "mv", "n", "pa", "m/s^2",
-                                       "m/s2", "m/s**2", "m/s²", "mm/s^2", "m/s", "mm/s", "m",
-                                       "mm", "um", "µm", "ms^-2", "ms-2", "rpm", "sec"};
+  static const char* const kUnits[] = {
+      "g",      "s",   "ms",   "hz", "v",  "mv", "n",  "pa",    "m/s^2", "m/s2", "m/s**2", "m/s²",
+      "mm/s^2", "m/s", "mm/s", "m",  "mm", "um", "µm", "ms^-2", "ms-2",  "rpm",  "sec"};
   for (const char* u : kUnits) {
     if (l == u) return true;
   }
@@ -157,8 +158,10 @@ std::optional<double> RateFromMetadata(const std::string& line, bool decimal_com
     if (value.find("khz") != std::string::npos) *v *= 1e3;
     return *v;
   }
-  if (value.find("ms") != std::string::npos) *v *= 1e-3;
-  else if (value.find("us") != std::string::npos || value.find("µs") != std::string::npos) *v *= 1e-6;
+  if (value.find("ms") != std::string::npos)
+    *v *= 1e-3;
+  else if (value.find("us") != std::string::npos || value.find("µs") != std::string::npos)
+    *v *= 1e-6;
   return 1.0 / *v;
 }
 
@@ -197,8 +200,8 @@ bool SplitChannelName(const std::string& name, std::string* sensor, Axis* axis) 
 
 double NormaliseAccelerationUnit(std::string* unit) {
   const std::string l = Lower(Trim(*unit));
-  if (l == "m/s^2" || l == "m/s2" || l == "m/s**2" || l == "m/s²" || l == "ms^-2" ||
-      l == "ms-2" || l == "m s^-2") {
+  if (l == "m/s^2" || l == "m/s2" || l == "m/s**2" || l == "m/s²" || l == "ms^-2" || l == "ms-2" ||
+      l == "m s^-2") {
     *unit = "m/s^2";
     return 1.0;
   }
@@ -230,9 +233,8 @@ Result<TextExport> ParseTextExport(std::string_view contents, const std::string&
     std::size_t start = 0;
     while (start <= contents.size()) {
       std::size_t pos = contents.find('\n', start);
-      std::string_view line = contents.substr(start, pos == std::string_view::npos
-                                                         ? std::string_view::npos
-                                                         : pos - start);
+      std::string_view line = contents.substr(
+          start, pos == std::string_view::npos ? std::string_view::npos : pos - start);
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
       lines.emplace_back(line);
       if (pos == std::string_view::npos) break;
@@ -247,10 +249,14 @@ Result<TextExport> ParseTextExport(std::string_view contents, const std::string&
 
   TextExport out;
   TextExportLayout& layout = out.layout;
-  if (probe.find('\t') != std::string::npos) layout.separator = '\t';
-  else if (probe.find(';') != std::string::npos) layout.separator = ';';
-  else if (probe.find(',') != std::string::npos) layout.separator = ',';
-  else layout.separator = ' ';
+  if (probe.find('\t') != std::string::npos)
+    layout.separator = '\t';
+  else if (probe.find(';') != std::string::npos)
+    layout.separator = ';';
+  else if (probe.find(',') != std::string::npos)
+    layout.separator = ',';
+  else
+    layout.separator = ' ';
   layout.decimal_comma = layout.separator != ',' && probe.find(',') != std::string::npos;
   const char sep = layout.separator;
   const bool dc = layout.decimal_comma;
@@ -281,20 +287,22 @@ Result<TextExport> ParseTextExport(std::string_view contents, const std::string&
   std::vector<std::size_t> header;  // line indices with ncols fields, nearest first
   for (std::size_t i = first; i > 0 && header.size() < 2; --i) {
     if (blank(lines[i - 1])) continue;
-    if (Split(lines[i - 1], sep).size() == ncols) header.push_back(i - 1);
-    else break;
+    if (Split(lines[i - 1], sep).size() == ncols)
+      header.push_back(i - 1);
+    else
+      break;
   }
   if (header.empty()) {
-    return Error{name + ": line " + std::to_string(first) +
-                 ": no names row with " + std::to_string(ncols) +
+    return Error{name + ": line " + std::to_string(first) + ": no names row with " +
+                 std::to_string(ncols) +
                  " columns above the data (the header must name every column)"};
   }
   std::vector<std::string> names, units(ncols);
   std::size_t names_line = header[0];
   {
     const std::vector<std::string> nearest = Split(lines[header[0]], sep);
-    const bool unit_like = std::all_of(nearest.begin(), nearest.end(), LooksLikeUnit) &&
-                           !IsNumericRow(nearest, dc);
+    const bool unit_like =
+        std::all_of(nearest.begin(), nearest.end(), LooksLikeUnit) && !IsNumericRow(nearest, dc);
     if (unit_like && header.size() == 2) {
       layout.units_row = true;
       for (std::size_t c = 0; c < ncols; ++c) {
@@ -373,7 +381,8 @@ Result<TextExport> ParseTextExport(std::string_view contents, const std::string&
     rate = *time_rate;
     layout.sample_rate_from = "time column";
   } else {
-    return Error{name + ": no sample rate: the header states none (e.g. \"Sample rate: 2560 Hz\") "
+    return Error{name +
+                 ": no sample rate: the header states none (e.g. \"Sample rate: 2560 Hz\") "
                  "and there is no time column"};
   }
 

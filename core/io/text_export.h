@@ -37,11 +37,11 @@ namespace gearpath {
 // history holds; replay cuts it into blocks).
 struct ContinuousAcquisition {
   double sample_rate_hz = 0.0;
-  double start_time_s = 0.0;               // the time column's first value; 0 without one
+  double start_time_s = 0.0;  // the time column's first value; 0 without one
   std::vector<ChannelInfo> channels;
-  std::vector<std::string> column_names;   // as written in the names row, per channel
+  std::vector<std::string> column_names;  // as written in the names row, per channel
   std::size_t samples_per_channel = 0;
-  std::vector<float> samples;              // planar: channel 0's samples, then channel 1's...
+  std::vector<float> samples;  // planar: channel 0's samples, then channel 1's...
 
   std::span<const float> channel(std::size_t c) const {
     return std::span<const float>(samples).subspan(c * samples_per_channel, samples_per_channel);
@@ -50,7 +50,7 @@ struct ContinuousAcquisition {
 
 // What the reader found out about the file's layout (reported by `gearpath inspect`/`replay`).
 struct TextExportLayout {
-  char separator = ',';        // '\t', ';', ',' or ' ' (runs of spaces)
+  char separator = ',';  // '\t', ';', ',' or ' ' (runs of spaces)
   bool decimal_comma = false;
   bool time_column = false;
   bool units_row = false;

@@ -172,11 +172,11 @@ TEST_F(DecoupleInspect, Eq24GivesTheHousingAloneAndPrintsTheFracTable) {
   ASSERT_TRUE(WriteFrfSet(ref, dir_ / "ref").ok());
 
   std::string out, err;
-  ASSERT_EQ(RunTool({"decouple", (dir_ / "coupled").string(), "--at", "m", "--out",
-                     (dir_ / "dec").string(), "--reference", (dir_ / "ref").string(), "--pair",
-                     "m1=m2"},
-                    dir_, "decouple", &out, &err),
-            0)
+  ASSERT_EQ(
+      RunTool({"decouple", (dir_ / "coupled").string(), "--at", "m", "--out",
+               (dir_ / "dec").string(), "--reference", (dir_ / "ref").string(), "--pair", "m1=m2"},
+              dir_, "decouple", &out, &err),
+      0)
       << err;
   EXPECT_NE(out.find("condition number of (H_pa - H_aa): worst"), std::string::npos) << out;
   EXPECT_NE(out.find("m1/real value"), std::string::npos) << out;
@@ -231,11 +231,13 @@ TEST_F(DecoupleInspect, Eq22FromUffFrfsWithADofMapGivesTheHousingAlone) {
 
 TEST_F(DecoupleInspect, DecoupleRejectsBadInputWithExitCode2) {
   std::string err;
-  EXPECT_EQ(RunTool({"decouple", (dir_ / "none").string(), "--at", "p"}, dir_, "d1", nullptr, &err), 2);
+  EXPECT_EQ(RunTool({"decouple", (dir_ / "none").string(), "--at", "p"}, dir_, "d1", nullptr, &err),
+            2);
   EXPECT_NE(err.find("no such file or directory"), std::string::npos) << err;
 
   ASSERT_TRUE(WriteFrfSet(CoupledModelSet(model_, false), dir_ / "no_m").ok());
-  EXPECT_EQ(RunTool({"decouple", (dir_ / "no_m").string(), "--at", "m"}, dir_, "d2", nullptr, &err), 2);
+  EXPECT_EQ(RunTool({"decouple", (dir_ / "no_m").string(), "--at", "m"}, dir_, "d2", nullptr, &err),
+            2);
   EXPECT_NE(err.find("--at m (Eq. 24) needs measurement DOFs"), std::string::npos) << err;
 
   EXPECT_EQ(RunTool({"decouple", (dir_ / "no_m").string(), "--at", "p", "--pair", "p9=p1"}, dir_,
@@ -244,7 +246,9 @@ TEST_F(DecoupleInspect, DecoupleRejectsBadInputWithExitCode2) {
   EXPECT_NE(err.find("no row \"p9\" in the result (rows: p1, p2)"), std::string::npos) << err;
 
   std::ofstream(dir_ / "frf.unv") << "    -1\n    58\n";
-  EXPECT_EQ(RunTool({"decouple", (dir_ / "frf.unv").string(), "--at", "p"}, dir_, "d4", nullptr, &err), 2);
+  EXPECT_EQ(
+      RunTool({"decouple", (dir_ / "frf.unv").string(), "--at", "p"}, dir_, "d4", nullptr, &err),
+      2);
   EXPECT_NE(err.find("a UFF input needs the DOF roles"), std::string::npos) << err;
 
   FrfSet only_decoupled;
@@ -256,14 +260,17 @@ TEST_F(DecoupleInspect, DecoupleRejectsBadInputWithExitCode2) {
   only_decoupled.decoupled.frequency_hz = model_.f;
   only_decoupled.decoupled.at = Block(model_.housing, {2}, {0});
   ASSERT_TRUE(WriteFrfSet(only_decoupled, dir_ / "dec_only").ok());
-  EXPECT_EQ(RunTool({"decouple", (dir_ / "dec_only").string(), "--at", "p"}, dir_, "d5", nullptr, &err), 2);
+  EXPECT_EQ(
+      RunTool({"decouple", (dir_ / "dec_only").string(), "--at", "p"}, dir_, "d5", nullptr, &err),
+      2);
   EXPECT_NE(err.find("has no \"coupled\" part"), std::string::npos) << err;
 }
 
 TEST_F(DecoupleInspect, InspectDescribesACoupledSetWithItsChecks) {
   ASSERT_TRUE(WriteFrfSet(CoupledModelSet(model_, true), dir_ / "coupled").ok());
   std::string out, err;
-  ASSERT_EQ(RunTool({"inspect", (dir_ / "coupled").string(), "--json"}, dir_, "inspect", &out, &err), 0)
+  ASSERT_EQ(
+      RunTool({"inspect", (dir_ / "coupled").string(), "--json"}, dir_, "inspect", &out, &err), 0)
       << err;
   const auto j = nlohmann::json::parse(out);
   EXPECT_EQ(j["kind"], "frf-set");
@@ -289,7 +296,8 @@ TEST_F(DecoupleInspect, InspectDescribesARecordingWithItsSequenceGaps) {
   Recording r;
   r.layout = {"gb", 1000.0, {{"A1", Axis::kX, "m/s^2", 0.0}}, 100};
   for (std::uint64_t seq : {5u, 6u, 9u}) {
-    r.blocks.push_back({seq, static_cast<std::int64_t>(seq) * 100000000, 20.0, SpeedSource::kUnknown});
+    r.blocks.push_back(
+        {seq, static_cast<std::int64_t>(seq) * 100000000, 20.0, SpeedSource::kUnknown});
   }
   r.samples.assign(300, 0.5f);
   r.samples[7] = std::nanf("");
@@ -320,9 +328,12 @@ TEST_F(DecoupleInspect, InspectRejectsMissingAndUnknownInputs) {
 }
 
 TEST_F(DecoupleInspect, InspectReportsATextExportsLayout) {
-  std::ofstream(dir_ / "export.txt") << "Time;A1-X;A1-Y\ns;m/s^2;m/s^2\n0,0;1,5;2\n0,5;1;2\n1,0;1;2\n";
+  std::ofstream(dir_ / "export.txt")
+      << "Time;A1-X;A1-Y\ns;m/s^2;m/s^2\n0,0;1,5;2\n0,5;1;2\n1,0;1;2\n";
   std::string out, err;
-  ASSERT_EQ(RunTool({"inspect", (dir_ / "export.txt").string(), "--json"}, dir_, "inspect", &out, &err), 0)
+  ASSERT_EQ(
+      RunTool({"inspect", (dir_ / "export.txt").string(), "--json"}, dir_, "inspect", &out, &err),
+      0)
       << err;
   const auto j = nlohmann::json::parse(out);
   EXPECT_EQ(j["layout"]["separator"], ";");
@@ -333,7 +344,8 @@ TEST_F(DecoupleInspect, InspectReportsATextExportsLayout) {
 }
 
 TEST_F(DecoupleInspect, DecoupleAndInspectHaveHelp) {
-  for (const auto& [cmd, option] : {std::pair{"decouple", "--at"}, std::pair{"inspect", "--json"}}) {
+  for (const auto& [cmd, option] :
+       {std::pair{"decouple", "--at"}, std::pair{"inspect", "--json"}}) {
     std::string out;
     EXPECT_EQ(RunTool({cmd, "--help"}, dir_, std::string("help_") + cmd, &out), 0) << cmd;
     EXPECT_NE(out.find(option), std::string::npos) << out;

@@ -55,7 +55,8 @@ class RecordReplay : public ::testing::Test {
         b.t0_ns = 1700000000000000000ll + static_cast<std::int64_t>(i) * 160000000ll + m;
         b.speed_hz = 24.7 + 0.001 * static_cast<double>(i) / 3.0;
         b.speed_source = sources[i % 3];
-        b.channels = {{"A1", Axis::kX, "m/s^2", 100.3}, {"A1", Axis::kY, "m/s^2", 99.7},
+        b.channels = {{"A1", Axis::kX, "m/s^2", 100.3},
+                      {"A1", Axis::kY, "m/s^2", 99.7},
                       {"A2", Axis::kZ, "g", 0.0}};
         b.samples_per_channel = m == 0 ? 256 : 100;
         for (std::size_t k = 0; k < b.channels.size() * b.samples_per_channel; ++k) {
@@ -113,9 +114,9 @@ void PublishFromTest(const std::vector<AccelBlock>& blocks) {
 TEST_F(RecordReplay, RecordThenReplayReproducesEveryBlockBitForBit) {
   const std::vector<AccelBlock> sent = MakeBlocks(5);
   // 1. Record what this test publishes.
-  ToolProcess rec1({"record", "--domain", Domain(), "--out", (dir_ / "rec1").string(), "--count",
-                    "10"},
-                   dir_, "rec1");
+  ToolProcess rec1(
+      {"record", "--domain", Domain(), "--out", (dir_ / "rec1").string(), "--count", "10"}, dir_,
+      "rec1");
   ASSERT_TRUE(rec1.WaitForStderr("subscribed", std::chrono::seconds(10))) << rec1.Err();
   PublishFromTest(sent);
   ASSERT_EQ(rec1.Wait(std::chrono::seconds(15)), 0) << rec1.Err();
@@ -134,9 +135,9 @@ TEST_F(RecordReplay, RecordThenReplayReproducesEveryBlockBitForBit) {
   }
 
   // 2. Replay the recording (both machines) and record it again: same bytes on disk.
-  ToolProcess rec2({"record", "--domain", Domain(), "--out", (dir_ / "rec2").string(), "--count",
-                    "10"},
-                   dir_, "rec2");
+  ToolProcess rec2(
+      {"record", "--domain", Domain(), "--out", (dir_ / "rec2").string(), "--count", "10"}, dir_,
+      "rec2");
   ASSERT_TRUE(rec2.WaitForStderr("subscribed", std::chrono::seconds(10))) << rec2.Err();
   std::string out, err;
   ASSERT_EQ(RunTool({"replay", (dir_ / "rec1").string(), "--fast", "--domain", Domain()}, dir_,
@@ -157,9 +158,9 @@ TEST_F(RecordReplay, RecordThenReplayReproducesEveryBlockBitForBit) {
 
 TEST_F(RecordReplay, RecordStopsCleanlyOnSigintAndKeepsWhatItGot) {
   const std::vector<AccelBlock> sent = MakeBlocks(2);
-  ToolProcess rec({"record", "--domain", Domain(), "--out", (dir_ / "rec").string(), "--machine",
-                   "gearbox-1"},
-                  dir_, "rec");
+  ToolProcess rec(
+      {"record", "--domain", Domain(), "--out", (dir_ / "rec").string(), "--machine", "gearbox-1"},
+      dir_, "rec");
   ASSERT_TRUE(rec.WaitForStderr("subscribed", std::chrono::seconds(10))) << rec.Err();
   PublishFromTest(sent);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
@@ -175,8 +176,8 @@ TEST_F(RecordReplay, RecordStopsCleanlyOnSigintAndKeepsWhatItGot) {
 
 TEST_F(RecordReplay, RecordReportsAMachineThatSentNothing) {
   std::string out, err;
-  EXPECT_EQ(RunTool({"record", "--domain", Domain(), "--out", (dir_ / "rec").string(),
-                     "--machine", "ghost", "--duration", "0.5"},
+  EXPECT_EQ(RunTool({"record", "--domain", Domain(), "--out", (dir_ / "rec").string(), "--machine",
+                     "ghost", "--duration", "0.5"},
                     dir_, "rec", &out, &err),
             1);
   EXPECT_NE(err.find("no block from machine \"ghost\""), std::string::npos) << err;
@@ -243,8 +244,8 @@ TEST_F(RecordReplay, ReplayCutsATextExportWithDecimalCommaIntoBlocks) {
   }
   std::ofstream(dir_ / "export.txt") << text;
   std::string out, err;
-  ASSERT_EQ(RunTool({"replay", (dir_ / "export.txt").string(), "--block-length", "4",
-                     "--machine", "gb", "--write-recording", (dir_ / "rec").string()},
+  ASSERT_EQ(RunTool({"replay", (dir_ / "export.txt").string(), "--block-length", "4", "--machine",
+                     "gb", "--write-recording", (dir_ / "rec").string()},
                     dir_, "replay", &out, &err),
             0)
       << err;
@@ -334,6 +335,32 @@ TEST_F(RecordReplay, ReplayKeepsOnlyTheBlocksBetweenStartAndEnd) {
   ASSERT_EQ(cut->block_count(), 2u);
   ExpectSameBlock(cut->block(0), blocks[4].view());
   ExpectSameBlock(cut->block(1), blocks[6].view());
+}
+
+TEST_F(RecordReplay, ReplayLoopContinuesSequenceAndTimeAcrossPasses) {
+  // 8 samples at 100 Hz in blocks of 4: two blocks per pass, three passes.
+  std::string text = "Sample rate: 100 Hz\nA1-X\n";
+  for (int k = 0; k < 8; ++k) text += std::to_string(k) + "\n";
+  std::ofstream(dir_ / "export.txt") << text;
+  ToolProcess rec({"record", "--domain", Domain(), "--out", (dir_ / "rec").string(), "--count",
+                   "6"},
+                  dir_, "rec");
+  ASSERT_TRUE(rec.WaitForStderr("subscribed", std::chrono::seconds(10))) << rec.Err();
+  std::string out, err;
+  ASSERT_EQ(RunTool({"replay", (dir_ / "export.txt").string(), "--block-length", "4", "--fast",
+                     "--loop", "--loops", "3", "--machine", "gb", "--domain", Domain()},
+                    dir_, "replay", &out, &err),
+            0)
+      << err;
+  ASSERT_EQ(rec.Wait(std::chrono::seconds(15)), 0) << rec.Err();
+  Result<Recording> r = ReadRecording(dir_ / "rec" / "gb");
+  ASSERT_TRUE(r.ok()) << r.error();
+  ASSERT_EQ(r->block_count(), 6u);
+  for (std::size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(r->blocks[i].sequence, i);
+    EXPECT_EQ(r->blocks[i].t0_ns - r->blocks[0].t0_ns, static_cast<std::int64_t>(i) * 40000000);
+    EXPECT_EQ(r->block(i).channel(0)[1], static_cast<float>((i % 2) * 4 + 1));
+  }
 }
 
 TEST_F(RecordReplay, EverySubcommandHasHelp) {

@@ -116,7 +116,8 @@ class ToolProcess {
 
 // Runs to completion (20 s deadline); returns the exit code, -1000 on timeout.
 inline int RunTool(const std::vector<std::string>& args, const std::filesystem::path& log_dir,
-                   const std::string& name, std::string* out = nullptr, std::string* err = nullptr) {
+                   const std::string& name, std::string* out = nullptr,
+                   std::string* err = nullptr) {
   ToolProcess p(args, log_dir, name);
   const std::optional<int> code = p.Wait(std::chrono::seconds(20));
   if (out) *out = p.Out();

@@ -32,14 +32,14 @@ namespace fs = std::filesystem;
 
 struct DecoupleOptions {
   std::string input;
-  std::string at;                    // "p" (Eq. 22) or "m" (Eq. 24)
-  std::vector<std::string> dofs;     // UFF input: NAME=NODE:DIR:ROLE
+  std::string at;                 // "p" (Eq. 22) or "m" (Eq. 24)
+  std::vector<std::string> dofs;  // UFF input: NAME=NODE:DIR:ROLE
   std::string out;
   double max_condition = 0.0;
-  std::string reference;             // FRF set of real values
-  std::string neighbours;            // FRF set of neighbouring points
-  std::vector<std::string> pairs;    // ROW=OTHER
-  std::string band;                  // "LO:HI" Hz
+  std::string reference;           // FRF set of real values
+  std::string neighbours;          // FRF set of neighbouring points
+  std::vector<std::string> pairs;  // ROW=OTHER
+  std::string band;                // "LO:HI" Hz
 };
 
 Result<UffDofAssignment> ParseDof(const std::string& text) {
@@ -59,14 +59,22 @@ Result<UffDofAssignment> ParseDof(const std::string& text) {
                  "\" is not an integer"};
   }
   const std::string dir = text.substr(c1 + 1, c2 - c1 - 1), role = text.substr(c2 + 1);
-  if (dir == "x" || dir == "1") dof.direction = 1;
-  else if (dir == "y" || dir == "2") dof.direction = 2;
-  else if (dir == "z" || dir == "3") dof.direction = 3;
-  else return Error{"--dof " + text + ": direction must be x, y, z (or 1, 2, 3), got \"" + dir + "\""};
-  if (role == "a") dof.role = DofRole::kActive;
-  else if (role == "p") dof.role = DofRole::kPassive;
-  else if (role == "m") dof.role = DofRole::kMeasurement;
-  else return Error{"--dof " + text + ": role must be a, p or m, got \"" + role + "\""};
+  if (dir == "x" || dir == "1")
+    dof.direction = 1;
+  else if (dir == "y" || dir == "2")
+    dof.direction = 2;
+  else if (dir == "z" || dir == "3")
+    dof.direction = 3;
+  else
+    return Error{"--dof " + text + ": direction must be x, y, z (or 1, 2, 3), got \"" + dir + "\""};
+  if (role == "a")
+    dof.role = DofRole::kActive;
+  else if (role == "p")
+    dof.role = DofRole::kPassive;
+  else if (role == "m")
+    dof.role = DofRole::kMeasurement;
+  else
+    return Error{"--dof " + text + ": role must be a, p or m, got \"" + role + "\""};
   return dof;
 }
 
@@ -124,7 +132,8 @@ int RunDecouple(const DecoupleOptions& opt) {
     source = std::move(*set);
   } else {
     if (opt.dofs.empty()) {
-      return bad("a UFF input needs the DOF roles: --dof NAME=NODE:DIR:ROLE for each a, p (and m) DOF");
+      return bad(
+          "a UFF input needs the DOF roles: --dof NAME=NODE:DIR:ROLE for each a, p (and m) DOF");
     }
     std::vector<UffDofAssignment> dofs;
     for (const std::string& d : opt.dofs) {
@@ -160,9 +169,10 @@ int RunDecouple(const DecoupleOptions& opt) {
               static_cast<long long>(result->decoupled.bins()),
               static_cast<std::size_t>(result->decoupled.outputs()),
               static_cast<std::size_t>(result->decoupled.inputs()));
-  std::printf("condition number of (H_pa - H_aa): worst %.4g at %.6g Hz, median %.4g (limit %.3g)\n",
-              rep.worst_condition_number, rep.worst_frequency_hz,
-              sorted.empty() ? 0.0 : sorted[sorted.size() / 2], rep.limit);
+  std::printf(
+      "condition number of (H_pa - H_aa): worst %.4g at %.6g Hz, median %.4g (limit %.3g)\n",
+      rep.worst_condition_number, rep.worst_frequency_hz,
+      sorted.empty() ? 0.0 : sorted[sorted.size() / 2], rep.limit);
 
   // The decoupled set: rows are the p (Eq. 22) or m (Eq. 24) DOFs, columns the p DOFs (paths).
   FrfSet out;
@@ -215,7 +225,9 @@ int RunDecouple(const DecoupleOptions& opt) {
     }
     for (Eigen::Index r = 0; r < out.decoupled.outputs(); ++r) {
       Result<double> f = RowFrac(out.decoupled, r, ref->decoupled, r, lo, hi);
-      if (!f) return bad(opt.reference + ": row " + labels[static_cast<std::size_t>(r)] + ": " + f.error());
+      if (!f)
+        return bad(opt.reference + ": row " + labels[static_cast<std::size_t>(r)] + ": " +
+                   f.error());
       headers.push_back(rows[static_cast<std::size_t>(r)].name + "/real value");
       values.push_back(*f);
     }
@@ -241,8 +253,7 @@ int RunDecouple(const DecoupleOptions& opt) {
         for (std::size_t i = 0; i < labels.size(); ++i) known += (i ? ", " : "") + rows[i].name;
         return bad("--pair " + p + ": no row \"" + a + "\" in the result (rows: " + known + ")");
       }
-      const Eigen::Index rb =
-          find_row(other_labels, other == &out ? &rows : nullptr, b);
+      const Eigen::Index rb = find_row(other_labels, other == &out ? &rows : nullptr, b);
       if (rb < 0) {
         return bad("--pair " + p + ": no row \"" + b + "\" in " +
                    (other == &out ? std::string("the result") : opt.neighbours));
@@ -278,12 +289,14 @@ int RunDecouple(const DecoupleOptions& opt) {
 void AddDecoupleCommand(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<DecoupleOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "decouple", "Virtual decoupling of coupled FRFs (seed Eq. 22 at p, Eq. 24 at m): condition "
-                  "numbers, FRAC table (Table 3 layout), decoupled FRF set");
+      "decouple",
+      "Virtual decoupling of coupled FRFs (seed Eq. 22 at p, Eq. 24 at m): condition "
+      "numbers, FRAC table (Table 3 layout), decoupled FRF set");
   cmd->add_option("input", opt->input, "FRF set with a coupled part, or a UFF 58 file of FRFs")
       ->required();
-  cmd->add_option("--at", opt->at, "p: responses at the interface (Eq. 22); m: at measurement "
-                                   "points (Eq. 24)")
+  cmd->add_option("--at", opt->at,
+                  "p: responses at the interface (Eq. 22); m: at measurement "
+                  "points (Eq. 24)")
       ->required()
       ->check(CLI::IsMember({"p", "m"}));
   cmd->add_option("--dof", opt->dofs, "UFF input: NAME=NODE:DIR:ROLE, role a, p or m (repeatable)");

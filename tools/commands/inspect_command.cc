@@ -65,7 +65,7 @@ json ConditionSummary(const Eigen::VectorXd& f, const std::vector<Eigen::MatrixX
   for (std::size_t k = 0; k < mats.size(); ++k) {
     Eigen::JacobiSVD<Eigen::MatrixXcd> svd(mats[k]);
     const auto& s = svd.singularValues();
-    const double c = s.size() == 0 ? 0.0
+    const double c = s.size() == 0         ? 0.0
                      : s[s.size() - 1] > 0 ? s[0] / s[s.size() - 1]
                                            : std::numeric_limits<double>::infinity();
     cond.push_back(c);
@@ -120,18 +120,19 @@ json InspectFrfSet(const FrfSet& set) {
     json channels = json::array(), paths = json::array();
     for (const auto& c : set.channels) channels.push_back(c.sensor + "-" + c.axis);
     for (const auto& p : set.paths) {
-      paths.push_back({{"name", p.name}, {"bearing", p.bearing}, {"direction", p.direction},
+      paths.push_back({{"name", p.name},
+                       {"bearing", p.bearing},
+                       {"direction", p.direction},
                        {"gears", p.gears}});
     }
-    j["decoupled"] = {{"decoupling", set.decoupling},
-                      {"shape", {set.decoupled.bins(), set.decoupled.outputs(),
-                                 set.decoupled.inputs()}},
-                      {"frequency", FrequencyAxis(set.decoupled.frequency_hz)},
-                      {"channels", channels},
-                      {"paths", paths},
-                      {"finite", AllFinite(set.decoupled.at)},
-                      {"condition_number",
-                       ConditionSummary(set.decoupled.frequency_hz, set.decoupled.at)}};
+    j["decoupled"] = {
+        {"decoupling", set.decoupling},
+        {"shape", {set.decoupled.bins(), set.decoupled.outputs(), set.decoupled.inputs()}},
+        {"frequency", FrequencyAxis(set.decoupled.frequency_hz)},
+        {"channels", channels},
+        {"paths", paths},
+        {"finite", AllFinite(set.decoupled.at)},
+        {"condition_number", ConditionSummary(set.decoupled.frequency_hz, set.decoupled.at)}};
   }
   if (set.coupled) {
     const CoupledSet& c = *set.coupled;
@@ -156,7 +157,8 @@ json InspectFrfSet(const FrfSet& set) {
     j["coupled"] = {
         {"dofs", {{"a", names(c.active)}, {"p", names(c.passive)}, {"m", names(c.measurement)}}},
         {"frequency", FrequencyAxis(b.frequency_hz)},
-        {"blocks", {{"ap_measured", b.has_ap()}, {"measurement_points", b.has_measurement_points()}}},
+        {"blocks",
+         {{"ap_measured", b.has_ap()}, {"measurement_points", b.has_measurement_points()}}},
         {"checks", checks},
         {"condition_number_pa_minus_aa",
          inverted.empty() ? json("n/a (|a| != |p|)") : ConditionSummary(b.frequency_hz, inverted)}};
@@ -178,7 +180,9 @@ std::string UtcTime(std::int64_t ns) {
 json InspectRecording(const Recording& r, const fs::path& dir) {
   json channels = json::array();
   for (const auto& c : r.layout.channels) {
-    channels.push_back({{"sensor", c.sensor}, {"axis", AxisName(c.axis)}, {"unit", c.unit},
+    channels.push_back({{"sensor", c.sensor},
+                        {"axis", AxisName(c.axis)},
+                        {"unit", c.unit},
                         {"sensitivity_mv_per_unit", c.sensitivity}});
   }
   json j{{"kind", "recording"},
@@ -235,14 +239,13 @@ json InspectContinuous(const ContinuousAcquisition& a, const std::string& kind) 
 json InspectUff(const std::vector<Uff58Record>& records) {
   json list = json::array();
   for (const auto& r : records) {
-    list.push_back({{"function", UffFunctionTypeName(r.function_type)},
-                    {"response", std::to_string(r.response_node) +
-                                     UffDirectionName(r.response_direction)},
-                    {"reference", std::to_string(r.reference_node) +
-                                      UffDirectionName(r.reference_direction)},
-                    {"points", r.ordinate.size()},
-                    {"abscissa_min", r.AbscissaAt(0)},
-                    {"abscissa_max", r.ordinate.empty() ? 0.0 : r.AbscissaAt(r.ordinate.size() - 1)}});
+    list.push_back(
+        {{"function", UffFunctionTypeName(r.function_type)},
+         {"response", std::to_string(r.response_node) + UffDirectionName(r.response_direction)},
+         {"reference", std::to_string(r.reference_node) + UffDirectionName(r.reference_direction)},
+         {"points", r.ordinate.size()},
+         {"abscissa_min", r.AbscissaAt(0)},
+         {"abscissa_max", r.ordinate.empty() ? 0.0 : r.AbscissaAt(r.ordinate.size() - 1)}});
   }
   return {{"kind", "uff58"}, {"records", list}};
 }
@@ -313,8 +316,9 @@ int RunInspect(const InspectOptions& opt) {
         list.push_back(InspectRecording(*r, d));
       }
       if (list.empty()) {
-        return fail(opt.input + ": neither an FRF set, a recording nor a directory of recordings "
-                                "(no manifest.json)");
+        return fail(opt.input +
+                    ": neither an FRF set, a recording nor a directory of recordings "
+                    "(no manifest.json)");
       }
       report = {{"kind", "recordings"}, {"recordings", list}};
     }
@@ -347,8 +351,9 @@ int RunInspect(const InspectOptions& opt) {
 void AddInspectCommand(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<InspectOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "inspect", "Show what an FRF set, a recording, a text export or a UFF file holds, with "
-                 "checks (finiteness, reciprocity, condition numbers)");
+      "inspect",
+      "Show what an FRF set, a recording, a text export or a UFF file holds, with "
+      "checks (finiteness, reciprocity, condition numbers)");
   cmd->add_option("input", opt->input, "FRF set or recording directory, text export, .unv/.uff")
       ->required();
   cmd->add_flag("--json", opt->json_output, "Machine-readable JSON");

@@ -38,8 +38,8 @@ struct RecordOptions {
   int domain_id = 0;
   std::vector<std::string> machines;  // empty = all
   std::string out;
-  std::size_t count = 0;     // stop after this many blocks (all machines together); 0 = never
-  double duration_s = 0.0;   // stop after this long; 0 = never
+  std::size_t count = 0;    // stop after this many blocks (all machines together); 0 = never
+  double duration_s = 0.0;  // stop after this long; 0 = never
   bool quiet = false;
 };
 
@@ -101,8 +101,8 @@ int RunRecord(const RecordOptions& opt) {
   while (!g_stop.load() && (opt.count == 0 || total < opt.count)) {
     std::chrono::nanoseconds wait = std::chrono::milliseconds(100);
     if (opt.duration_s > 0) {
-      const auto left = start + std::chrono::duration<double>(opt.duration_s) -
-                        std::chrono::steady_clock::now();
+      const auto left =
+          start + std::chrono::duration<double>(opt.duration_s) - std::chrono::steady_clock::now();
       if (left <= std::chrono::nanoseconds::zero()) {
         timed_out = true;
         break;
@@ -172,11 +172,10 @@ int RunRecord(const RecordOptions& opt) {
     }
   }
   if (!opt.quiet) {
-    std::fprintf(stderr, "gearpath record: %zu blocks from %zu machines%s%s\n", total,
-                 streams.size(),
-                 foreign ? (", " + std::to_string(foreign) + " of other machines ignored").c_str()
-                         : "",
-                 g_stop.load() ? " (stopped by signal)" : "");
+    std::fprintf(
+        stderr, "gearpath record: %zu blocks from %zu machines%s%s\n", total, streams.size(),
+        foreign ? (", " + std::to_string(foreign) + " of other machines ignored").c_str() : "",
+        g_stop.load() ? " (stopped by signal)" : "");
   }
   for (const std::string& m : opt.machines) {
     if (!streams.count(m)) {
@@ -197,15 +196,17 @@ int RunRecord(const RecordOptions& opt) {
 void AddRecordCommand(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<RecordOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "record", "Record AccelBlocks from DDS into recordings (docs/recording_format.md), one per "
-                "machine under --out; stops after --count blocks, --duration seconds, or Ctrl-C");
+      "record",
+      "Record AccelBlocks from DDS into recordings (docs/recording_format.md), one per "
+      "machine under --out; stops after --count blocks, --duration seconds, or Ctrl-C");
   cmd->add_option("--out,-o", opt->out, "Output directory (new or empty)")->required();
   cmd->add_option("--machine", opt->machines, "Only these machine ids (repeatable; default all)");
   cmd->add_option("--count", opt->count, "Stop after this many blocks in total; 0 = never")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--duration", opt->duration_s, "Stop after this many seconds; 0 = never")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--domain", opt->domain_id, "DDS domain id")->capture_default_str()
+  cmd->add_option("--domain", opt->domain_id, "DDS domain id")
+      ->capture_default_str()
       ->check(CLI::Range(0, 232));
   cmd->add_flag("--quiet,-q", opt->quiet, "No summary on stderr");
   cmd->callback([opt, &exit_code] {

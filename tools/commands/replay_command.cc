@@ -52,9 +52,12 @@ struct Cursor {
 };
 
 int RunReplay(ReplayOptions opt) {
-  if (opt.format == "recording") opt.in.format = ReplayFormat::kRecording;
-  else if (opt.format == "text") opt.in.format = ReplayFormat::kText;
-  else if (opt.format == "uff") opt.in.format = ReplayFormat::kUff58;
+  if (opt.format == "recording")
+    opt.in.format = ReplayFormat::kRecording;
+  else if (opt.format == "text")
+    opt.in.format = ReplayFormat::kText;
+  else if (opt.format == "uff")
+    opt.in.format = ReplayFormat::kUff58;
   Result<ReplayInput> loaded = LoadReplayInput(opt.input, opt.in);
   if (!loaded) {
     std::fprintf(stderr, "gearpath replay: %s\n", loaded.error().c_str());
@@ -68,8 +71,7 @@ int RunReplay(ReplayOptions opt) {
     for (const Recording& r : input.recordings) {
       std::fprintf(stderr, "%s machine %s (%zu ch x %u samples at %g Hz)",
                    &r == &input.recordings.front() ? "," : ";", r.layout.machine_id.c_str(),
-                   r.layout.channels.size(), r.layout.samples_per_channel,
-                   r.layout.sample_rate_hz);
+                   r.layout.channels.size(), r.layout.samples_per_channel, r.layout.sample_rate_hz);
     }
     std::fprintf(stderr, "\n");
     if (input.dropped_samples > 0) {
@@ -86,10 +88,10 @@ int RunReplay(ReplayOptions opt) {
 
   if (!opt.write_recording.empty()) {
     for (const Recording& r : input.recordings) {
-      const std::filesystem::path dir =
-          input.recordings.size() == 1
-              ? std::filesystem::path(opt.write_recording)
-              : std::filesystem::path(opt.write_recording) / MachineDirectoryName(r.layout.machine_id);
+      const std::filesystem::path dir = input.recordings.size() == 1
+                                            ? std::filesystem::path(opt.write_recording)
+                                            : std::filesystem::path(opt.write_recording) /
+                                                  MachineDirectoryName(r.layout.machine_id);
       if (Status st = WriteRecording(r, dir); !st) {
         std::fprintf(stderr, "gearpath replay: %s\n", st.error().c_str());
         return kExitFailure;
@@ -176,8 +178,9 @@ int RunReplay(ReplayOptions opt) {
 void AddReplayCommand(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<ReplayOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "replay", "Publish recorded acquisitions as AccelBlocks: a recording (or a directory of "
-                "them), a DH8303-style text export, or UFF 58 time histories");
+      "replay",
+      "Publish recorded acquisitions as AccelBlocks: a recording (or a directory of "
+      "them), a DH8303-style text export, or UFF 58 time histories");
   cmd->add_option("input", opt->input, "Recording directory, text export, or .unv/.uff file")
       ->required();
   cmd->add_option("--format", opt->format, "Input format (default: from the path)")
@@ -210,7 +213,8 @@ void AddReplayCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--shaft-speed", opt->in.shaft_speed_hz,
                   "Continuous inputs: input-shaft speed in Hz to send with every block")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--domain", opt->domain_id, "DDS domain id")->capture_default_str()
+  cmd->add_option("--domain", opt->domain_id, "DDS domain id")
+      ->capture_default_str()
       ->check(CLI::Range(0, 232));
   cmd->add_option("--subscribers", opt->subscribers,
                   "Wait for this many subscribers before the first block")

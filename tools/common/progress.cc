@@ -37,8 +37,8 @@ std::string Progress::Line(std::size_t done, double elapsed_s) const {
     return buf;
   }
   const double fraction = std::min(1.0, static_cast<double>(done) / static_cast<double>(total_));
-  const double eta = rate > 0 ? static_cast<double>(total_ - std::min(done, total_)) / rate
-                              : std::nan("");
+  const double eta =
+      rate > 0 ? static_cast<double>(total_ - std::min(done, total_)) / rate : std::nan("");
   if (terminal_) {
     constexpr int kWidth = 30;
     const int filled = static_cast<int>(fraction * kWidth);

@@ -48,8 +48,8 @@ Result<std::vector<std::size_t>> ApplyChannelMap(const std::vector<std::string>&
       for (std::size_t c = 0; c < channels.size(); ++c) {
         known += (c ? ", " : "") + (c < names.size() ? names[c] : ChannelLabel(channels[c]));
       }
-      return Error{"--channel " + entry + ": no channel named \"" + column + "\" (channels: " +
-                   known + ")"};
+      return Error{"--channel " + entry + ": no channel named \"" + column +
+                   "\" (channels: " + known + ")"};
     }
     if (target == "-") {
       keep[index] = false;
@@ -182,8 +182,8 @@ Result<Recording> BlockContinuous(const ContinuousAcquisition& acquisition,
   const std::size_t n = acq.samples_per_channel;
   const double fs = acq.sample_rate_hz;
   auto index_of = [&](double seconds) {
-    return static_cast<std::size_t>(std::clamp(std::llround(seconds * fs), 0ll,
-                                               static_cast<long long>(n)));
+    return static_cast<std::size_t>(
+        std::clamp(std::llround(seconds * fs), 0ll, static_cast<long long>(n)));
   };
   const std::size_t begin = index_of(options.start_s);
   const std::size_t end = options.end_s > 0 ? index_of(options.end_s) : n;
@@ -198,8 +198,7 @@ Result<Recording> BlockContinuous(const ContinuousAcquisition& acquisition,
     length = std::min<std::size_t>(4096, end - begin);
     length = std::min<std::size_t>(length, gearpath_MAX_BLOCK_SAMPLES / channels);
   }
-  if (length > gearpath_MAX_SAMPLES_PER_CHANNEL ||
-      length * channels > gearpath_MAX_BLOCK_SAMPLES) {
+  if (length > gearpath_MAX_SAMPLES_PER_CHANNEL || length * channels > gearpath_MAX_BLOCK_SAMPLES) {
     return Error{"--block-length " + std::to_string(length) + " x " + std::to_string(channels) +
                  " channels exceeds the AccelBlock bounds (" +
                  std::to_string(gearpath_MAX_SAMPLES_PER_CHANNEL) + " per channel, " +
@@ -220,18 +219,18 @@ Result<Recording> BlockContinuous(const ContinuousAcquisition& acquisition,
   r.layout.sample_rate_hz = fs;
   for (std::size_t c : *kept) r.layout.channels.push_back(acq.channels[c]);
   r.layout.samples_per_channel = static_cast<std::uint32_t>(length);
-  const std::int64_t t0 =
-      options.t0_ns != 0 ? options.t0_ns
-                         : std::chrono::duration_cast<std::chrono::nanoseconds>(
-                               std::chrono::system_clock::now().time_since_epoch())
-                               .count();
+  const std::int64_t t0 = options.t0_ns != 0
+                              ? options.t0_ns
+                              : std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                    std::chrono::system_clock::now().time_since_epoch())
+                                    .count();
   r.samples.reserve(n_blocks * channels * length);
   for (std::size_t b = 0; b < n_blocks; ++b) {
     const std::size_t first = begin + b * length;
     const double offset_s = static_cast<double>(first - begin) / fs;
-    r.blocks.push_back({b, t0 + std::llround(offset_s * 1e9), options.shaft_speed_hz,
-                        options.shaft_speed_hz > 0 ? SpeedSource::kConfiguration
-                                                   : SpeedSource::kUnknown});
+    r.blocks.push_back(
+        {b, t0 + std::llround(offset_s * 1e9), options.shaft_speed_hz,
+         options.shaft_speed_hz > 0 ? SpeedSource::kConfiguration : SpeedSource::kUnknown});
     for (std::size_t c : *kept) {
       const auto ch = acq.channel(c).subspan(first, length);
       r.samples.insert(r.samples.end(), ch.begin(), ch.end());
@@ -247,8 +246,9 @@ Result<ReplayInput> LoadReplayInput(const fs::path& path, const ReplayInputOptio
   ReplayInput input;
   if (format == ReplayFormat::kRecording) {
     if (options.block_length != 0) {
-      return Error{"--block-length re-blocks continuous inputs (text, UFF); a recording keeps "
-                   "its blocks"};
+      return Error{
+          "--block-length re-blocks continuous inputs (text, UFF); a recording keeps "
+          "its blocks"};
     }
     std::vector<fs::path> dirs;
     if (fs::exists(path / kRecordingManifestName)) {
@@ -262,25 +262,27 @@ Result<ReplayInput> LoadReplayInput(const fs::path& path, const ReplayInputOptio
       std::sort(dirs.begin(), dirs.end());
     }
     if (dirs.empty()) {
-      return Error{path.string() + ": neither a recording (no manifest.json) nor a directory of "
+      return Error{path.string() +
+                   ": neither a recording (no manifest.json) nor a directory of "
                    "recordings"};
     }
     for (const fs::path& dir : dirs) {
       Result<Recording> r = ReadRecording(dir);
       if (!r) return Error{r.error()};
-      if (!options.select.empty() &&
-          std::find(options.select.begin(), options.select.end(), r->layout.machine_id) ==
-              options.select.end()) {
+      if (!options.select.empty() && std::find(options.select.begin(), options.select.end(),
+                                               r->layout.machine_id) == options.select.end()) {
         continue;
       }
       input.recordings.push_back(std::move(*r));
     }
     for (const std::string& wanted : options.select) {
-      const bool found = std::any_of(input.recordings.begin(), input.recordings.end(),
-                                     [&](const Recording& r) { return r.layout.machine_id == wanted; });
+      const bool found =
+          std::any_of(input.recordings.begin(), input.recordings.end(),
+                      [&](const Recording& r) { return r.layout.machine_id == wanted; });
       if (!found) {
         std::string have;
-        for (const fs::path& dir : dirs) have += (have.empty() ? "" : ", ") + dir.filename().string();
+        for (const fs::path& dir : dirs)
+          have += (have.empty() ? "" : ", ") + dir.filename().string();
         return Error{path.string() + ": unknown machine \"" + wanted + "\" (recordings: " + have +
                      ")"};
       }

@@ -24,21 +24,21 @@ enum class ReplayFormat { kAuto, kRecording, kText, kUff58 };
 
 struct ReplayInputOptions {
   ReplayFormat format = ReplayFormat::kAuto;
-  std::string machine;               // override the machine id (single-stream inputs only)
-  std::vector<std::string> select;   // machines to take from a directory of recordings
-  double start_s = 0.0;              // skip data before this offset from the first sample
-  double end_s = 0.0;                // stop at this offset; <= 0: to the end
-  std::uint32_t block_length = 0;    // continuous inputs: samples per block; 0: 4096 (clamped)
+  std::string machine;                   // override the machine id (single-stream inputs only)
+  std::vector<std::string> select;       // machines to take from a directory of recordings
+  double start_s = 0.0;                  // skip data before this offset from the first sample
+  double end_s = 0.0;                    // stop at this offset; <= 0: to the end
+  std::uint32_t block_length = 0;        // continuous inputs: samples per block; 0: 4096 (clamped)
   std::vector<std::string> channel_map;  // "COLUMN=SENSOR:AXIS" or "COLUMN=-" (drop)
-  double sample_rate_hz = 0.0;       // text exports without a stated rate
-  double shaft_speed_hz = 0.0;       // continuous inputs: input-shaft speed to send (0: none)
-  std::int64_t t0_ns = 0;            // continuous inputs: t0 of the first sample (0: now)
+  double sample_rate_hz = 0.0;           // text exports without a stated rate
+  double shaft_speed_hz = 0.0;           // continuous inputs: input-shaft speed to send (0: none)
+  std::int64_t t0_ns = 0;                // continuous inputs: t0 of the first sample (0: now)
 };
 
 struct ReplayInput {
-  std::string description;              // one line: what was read, for messages
-  std::vector<Recording> recordings;    // one per machine stream
-  std::size_t dropped_samples = 0;      // continuous inputs: tail shorter than a block
+  std::string description;            // one line: what was read, for messages
+  std::vector<Recording> recordings;  // one per machine stream
+  std::size_t dropped_samples = 0;    // continuous inputs: tail shorter than a block
 };
 
 // Reads `path`; errors name the file and why (they are bad input: exit code 2).

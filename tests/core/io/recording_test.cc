@@ -95,8 +95,8 @@ TEST_F(RecordingTest, SamplesFileIsAStandardNpyArrayOfBlocksChannelsSamples) {
   EXPECT_EQ(header->data_offset % 64, 0u);
   const std::string bytes = ReadFileBytes(dir_ / "samples.npy");
   ASSERT_EQ(bytes.size(), header->data_offset + in.samples.size() * 4);
-  EXPECT_EQ(std::memcmp(bytes.data() + header->data_offset, in.samples.data(),
-                        in.samples.size() * 4), 0);
+  EXPECT_EQ(
+      std::memcmp(bytes.data() + header->data_offset, in.samples.data(), in.samples.size() * 4), 0);
 }
 
 TEST_F(RecordingTest, StreamingWriterRefusesABlockOfAnotherLayout) {
@@ -150,7 +150,8 @@ TEST_F(RecordingTest, RejectsAnotherFormatByName) {
   WriteFileBytes(dir_ / "manifest.json", R"({"format": "gearpath-frf-set", "format_version": 1})");
   Result<Recording> r = ReadRecording(dir_);
   ASSERT_FALSE(r.ok());
-  EXPECT_TRUE(Contains(r.error(), "format: expected \"gearpath-recording\", got \"gearpath-frf-set\""));
+  EXPECT_TRUE(
+      Contains(r.error(), "format: expected \"gearpath-recording\", got \"gearpath-frf-set\""));
 }
 
 TEST_F(RecordingTest, RejectsSamplesWhoseShapeDisagreesWithTheManifest) {
@@ -159,7 +160,8 @@ TEST_F(RecordingTest, RejectsSamplesWhoseShapeDisagreesWithTheManifest) {
   ASSERT_TRUE(WriteNpy<float>(dir_ / "samples.npy", wrong, {2, 2, 5}).ok());
   Result<Recording> r = ReadRecording(dir_);
   ASSERT_FALSE(r.ok());
-  EXPECT_TRUE(Contains(r.error(), "shape (2, 2, 5) does not match the manifest: expected (3, 2, 5)"));
+  EXPECT_TRUE(
+      Contains(r.error(), "shape (2, 2, 5) does not match the manifest: expected (3, 2, 5)"));
 }
 
 TEST_F(RecordingTest, RejectsPerBlockListsOfTheWrongLengthNamingTheKey) {

@@ -1,0 +1,301 @@
+// `gearpath report` end to end: a recording of the simulated Table-1 gearbox (healthy blocks,
+// then a tooth fracture on G1) is reported by the built tool; the page must parse as XML, draw
+// one bar per path and one marker per shaft harmonic, and carry exactly the numbers of a
+// BlockProcessor run here on the same blocks. Bad inputs exit with code 2 and say why.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/diagnosis/train_layout.h"
+#include "core/io/recording.h"
+#include "core/model/gear_train.h"
+#include "core/model/lumped_gearbox_model.h"
+#include "core/pipeline/block_processor.h"
+#include "core/simulation/gearbox_simulator.h"
+#include "core/simulation/model_frf_set.h"
+
+namespace gearpath {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::uint32_t kBlock = 8192;
+constexpr double kFs = 8000.0;
+constexpr int kHealthyBlocks = 6;
+constexpr int kFaultyBlocks = 3;
+constexpr int kReportedBlock = kHealthyBlocks + 1;  // the second faulty block
+
+std::string ReadText(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct ToolRun {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs `gearpath <args>` (arguments are test-made paths and numbers, no shell metacharacters).
+ToolRun RunTool(const std::string& args, const fs::path& dir) {
+  const fs::path out = dir / "tool.out";
+  const fs::path err = dir / "tool.err";
+  const std::string cmd = std::string(GEARPATH_TOOL_PATH) + " " + args + " >" + out.string() +
+                          " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  ToolRun r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = ReadText(out);
+  r.err = ReadText(err);
+  return r;
+}
+
+bool HavePython() { return std::system("python3 -c 'import xml.dom.minidom' 2>/dev/null") == 0; }
+
+// 0 when python3's XML parser accepts the file.
+int ParseXml(const fs::path& file) {
+  const std::string cmd =
+      "python3 -c 'import sys, xml.dom.minidom; xml.dom.minidom.parse(sys.argv[1])' " +
+      file.string();
+  return std::system(cmd.c_str());
+}
+
+std::size_t Count(const std::string& text, const std::string& needle) {
+  std::size_t n = 0;
+  for (auto p = text.find(needle); p != std::string::npos; p = text.find(needle, p + 1)) ++n;
+  return n;
+}
+
+// The data-value attributes of the table row opened by `row_marker`, in order.
+std::vector<double> RowValues(const std::string& html, const std::string& row_marker) {
+  std::vector<double> v;
+  const auto start = html.find(row_marker);
+  if (start == std::string::npos) return v;
+  const auto end = html.find("</tr>", start);
+  const std::string key = "data-value=\"";
+  for (auto p = html.find(key, start); p != std::string::npos && p < end;
+       p = html.find(key, p + 1)) {
+    v.push_back(std::strtod(html.c_str() + p + key.size(), nullptr));
+  }
+  return v;
+}
+
+struct Fixture {
+  fs::path dir;
+  fs::path recording;
+  MachineSetup setup;
+  std::vector<BlockResult> results;  // per block, from a BlockProcessor run here
+};
+
+// Table-1 model, the `builtin:table1` FRF grid (bins 1..4096 of 8192 samples at 8 kHz).
+const Fixture& Shared() {
+  static const Fixture f = [] {
+    Fixture x;
+    x.dir = fs::temp_directory_path() / ("gearpath_report_test_" + std::to_string(getpid()));
+    fs::remove_all(x.dir);
+    fs::create_directories(x.dir);
+    x.recording = x.dir / "rec";
+    auto model = LumpedGearboxModel::Create(Table1Parameters());
+    EXPECT_TRUE(model.ok());
+    const GearTrain train = GearTrain::Table1();
+    Eigen::VectorXd f(kBlock / 2);
+    for (Eigen::Index k = 0; k < f.size(); ++k) f[k] = static_cast<double>(k + 1) * kFs / kBlock;
+    auto set = MakeModelFrfSet(model.value(), train, f);
+    EXPECT_TRUE(set.ok());
+
+    Recording rec;
+    std::uint64_t sequence = 0;
+    for (const bool faulty : {false, true}) {
+      SimulatorConfig c;
+      c.machine_id = "sim";
+      c.fault.type = faulty ? FaultType::kToothFracture : FaultType::kNone;
+      c.fault.gear = faulty ? "G1" : "";
+      c.sample_rate_hz = kFs;
+      c.block_length = kBlock;
+      c.noise_relative = 0.05;
+      c.seed = faulty ? 11 : 7;
+      c.include_housing_channel = false;
+      auto sim = GearboxSimulator::Create(model.value(), train, c);
+      EXPECT_TRUE(sim.ok()) << sim.error();
+      AccelBlock block;
+      for (int i = 0; i < (faulty ? kFaultyBlocks : kHealthyBlocks); ++i) {
+        sim->NextBlock(block);
+        block.sequence = sequence++;
+        const AccelBlockView v = block.view();
+        if (rec.blocks.empty()) rec.layout = LayoutOf(v);
+        rec.blocks.push_back({v.sequence, v.t0_ns, v.speed_hz, v.speed_source});
+        rec.samples.insert(rec.samples.end(), v.samples.begin(), v.samples.end());
+      }
+    }
+    EXPECT_TRUE(WriteRecording(rec, x.recording).ok());
+
+    // The truth the page must show: the pipeline on the same blocks, automatic settings.
+    x.setup.machine_id = "sim";
+    x.setup.frf_set = set.value();
+    x.setup.train = TrainLayoutFromGearTrain(train).value();
+    x.setup.options.sample_rate_hz = kFs;
+    x.setup.options.nominal_speed_hz = rec.blocks[0].speed_hz;
+    x.setup.options.baseline_blocks = kHealthyBlocks;
+    auto p = BlockProcessor::Create(x.setup);
+    EXPECT_TRUE(p.ok()) << p.error();
+    BlockResult r;
+    for (std::size_t i = 0; i < rec.block_count(); ++i) {
+      EXPECT_TRUE(p->Process(rec.block(i), r).accepted());
+      x.results.push_back(r);
+    }
+    return x;
+  }();
+  return f;
+}
+
+std::string ReportArgs(const Fixture& f, const std::string& range, const fs::path& out) {
+  return "report --builtin table1 --recording " + f.recording.string() + " " + range +
+         " --baseline-blocks " + std::to_string(kHealthyBlocks) + " -o " + out.string();
+}
+
+TEST(ReportCommandTest, WritesAWellFormedPageForAFaultyBlock) {
+  const Fixture& f = Shared();
+  const fs::path out = f.dir / "block.html";
+  const ToolRun r = RunTool(ReportArgs(f, "--block " + std::to_string(kReportedBlock), out), f.dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(out));
+  if (!HavePython()) GTEST_SKIP() << "python3 with xml.dom.minidom not available";
+  EXPECT_EQ(ParseXml(out), 0) << "the page is not well-formed XML";
+}
+
+TEST(ReportCommandTest, DrawsOneBarPerPathAndOneMarkerPerShaftHarmonic) {
+  const Fixture& f = Shared();
+  const fs::path out = f.dir / "markers.html";
+  ASSERT_EQ(RunTool(ReportArgs(f, "--block " + std::to_string(kReportedBlock), out), f.dir).code,
+            0);
+  const std::string html = ReadText(out);
+  const BlockResult& truth = f.results[kReportedBlock];
+  EXPECT_EQ(Count(html, "<rect class=\"path-bar"), truth.paths.size());
+  for (const BlockPathShare& p : truth.paths) {
+    EXPECT_EQ(Count(html, "data-path=\"" + std::string(p.name) + "\" data-share=\"" +
+                              fmt::format("{}", p.share) + "\""),
+              1u)
+        << p.name;
+  }
+  // Raw and reconstructed SES: every shaft's harmonics 1..5 marked once each.
+  EXPECT_EQ(Count(html, "<line class=\"harmonic-marker\""), 2 * 5 * truth.shafts.size());
+  for (const BlockShaftIndicator& sh : truth.shafts) {
+    for (int h = 1; h <= 5; ++h) {
+      EXPECT_EQ(Count(html, fmt::format("data-shaft=\"{}\" data-harmonic=\"{}\" data-hz=\"{}\"",
+                                        sh.shaft, h, h * sh.characteristic_hz)),
+                2u)
+          << sh.shaft << " harmonic " << h;
+    }
+  }
+  EXPECT_EQ(Count(html, "<rect class=\"chosen-band\""), 2u);
+}
+
+TEST(ReportCommandTest, TableAndVerdictAreTheBlockResults) {
+  const Fixture& f = Shared();
+  const fs::path out = f.dir / "table.html";
+  ASSERT_EQ(RunTool(ReportArgs(f, "--block " + std::to_string(kReportedBlock), out), f.dir).code,
+            0);
+  const std::string html = ReadText(out);
+  const BlockResult& truth = f.results[kReportedBlock];
+  ASSERT_EQ(truth.shafts.size(), 3u);
+  for (const BlockShaftIndicator& sh : truth.shafts) {
+    const std::vector<double> v = RowValues(html, "<tr data-shaft=\"" + std::string(sh.shaft) + "\">");
+    ASSERT_EQ(v.size(), 6u) << sh.shaft;
+    EXPECT_EQ(v[0], sh.characteristic_hz);
+    EXPECT_EQ(v[1], sh.raw);
+    EXPECT_EQ(v[2], sh.raw_threshold);
+    EXPECT_EQ(v[3], sh.reconstructed);
+    EXPECT_EQ(v[4], sh.reconstructed_threshold);
+    EXPECT_EQ(v[5], sh.enhancement_percent);
+    EXPECT_GT(sh.raw_threshold, 0.0) << "the baseline was learned from the healthy blocks";
+  }
+  // A fault was simulated: the verdict is not "no fault", and the page says the pipeline's.
+  ASSERT_TRUE(truth.verdict.state == FaultState::kSuspected ||
+              truth.verdict.state == FaultState::kAlarm);
+  const std::string state = truth.verdict.state == FaultState::kAlarm ? "alarm" : "suspected";
+  EXPECT_EQ(Count(html, fmt::format("<p class=\"verdict-text\" data-state=\"{}\" data-gear=\"{}\">",
+                                    state, truth.verdict.gear_name)),
+            1u);
+  EXPECT_EQ(truth.verdict.gear_name, "G1");
+  EXPECT_NE(html.find(state == "alarm" ? ">ALARM: gear G1" : ">SUSPECTED: gear G1"),
+            std::string::npos);
+}
+
+TEST(ReportCommandTest, SpanReportAddsOneTrendRowPerBlock) {
+  const Fixture& f = Shared();
+  const fs::path out = f.dir / "span.html";
+  const ToolRun r = RunTool(ReportArgs(f, "--span 4:8", out), f.dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = ReadText(out);
+  EXPECT_EQ(Count(html, "<tr data-block=\""), 5u);
+  for (int b = 4; b <= 8; ++b) {
+    const std::vector<double> v = RowValues(html, fmt::format("<tr data-block=\"{}\">", b));
+    ASSERT_EQ(v.size(), 6u);
+    EXPECT_EQ(v[1], f.results[static_cast<std::size_t>(b)].shafts[0].reconstructed);
+  }
+  EXPECT_EQ(Count(html, "<polyline class=\"trend-reconstructed\""), 3u);
+  if (HavePython()) EXPECT_EQ(ParseXml(out), 0);
+}
+
+TEST(ReportCommandTest, RejectsMissingRecording) {
+  const Fixture& f = Shared();
+  const ToolRun r = RunTool("report --builtin table1 --recording " + (f.dir / "nope").string() +
+                                " --block 0 -o " + (f.dir / "x.html").string(),
+                            f.dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("recording '" + (f.dir / "nope").string() +
+                       "' does not exist or is not a directory"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST(ReportCommandTest, RejectsBlockOutOfRange) {
+  const Fixture& f = Shared();
+  const ToolRun r = RunTool(ReportArgs(f, "--block 9", f.dir / "x.html"), f.dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--block 9 is out of range: the recording holds 9 blocks (0..8)"),
+            std::string::npos)
+      << r.err;
+  const ToolRun s = RunTool(ReportArgs(f, "--span 3:12", f.dir / "x.html"), f.dir);
+  EXPECT_EQ(s.code, 2);
+  EXPECT_NE(s.err.find("--span 3:12: block 12 is out of range"), std::string::npos) << s.err;
+  const ToolRun t = RunTool(ReportArgs(f, "--span 5-6", f.dir / "x.html"), f.dir);
+  EXPECT_EQ(t.code, 2);
+  EXPECT_NE(t.err.find("--span '5-6' is not START:END"), std::string::npos) << t.err;
+}
+
+TEST(ReportCommandTest, RejectsUnknownMachine) {
+  const Fixture& f = Shared();
+  const ToolRun r = RunTool("report --builtin table9 --recording " + f.recording.string() +
+                                " --block 0 -o " + (f.dir / "x.html").string(),
+                            f.dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("unknown built-in machine 'table9' (known: table1)"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(f.dir / "x.html"));
+}
+
+TEST(ReportCommandTest, RejectsThresholdListsOfTheWrongLength) {
+  const Fixture& f = Shared();
+  const ToolRun r = RunTool(ReportArgs(f, "--block 0 --raw-thresholds 1,2 "
+                                          "--reconstructed-thresholds 1,2",
+                                       f.dir / "x.html"),
+                            f.dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("thresholds"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace gearpath
