@@ -11,7 +11,7 @@
 //
 // Configure once, process per block:
 //  - Create() validates the setup and builds everything that depends only on the FRFs and the
-//    gear train. It throws nothing; errors name the offending field.
+//    gear train. Errors come back as Result, naming the offending field.
 //  - The first block of a new shape (samples_per_channel; the sample rate is fixed per machine)
 //    configures: FFT plans, the FRF set brought onto the block's bin grid ONCE (linear
 //    interpolation in real and imaginary parts; bins outside the FRF's frequency range get
@@ -20,12 +20,14 @@
 //    allocates; Prepare(n) does it ahead of time. Later blocks of a configured shape allocate
 //    nothing. Up to kMaxShapes shapes are kept; a further new shape replaces the oldest.
 //  - Process() is noexcept. It never throws on data: a bad block comes back as a typed
-//    RejectReason with a one-line message.
+//    RejectReason with a one-line message and leaves the BlockResult untouched.
+//  - Thresholds: configured, or learned from the first baseline_blocks ACCEPTED blocks, which
+//    are assumed healthy (the verdict is kLearning meanwhile; ResetBaseline() relearns).
 //
 // Thread-safety: one BlockProcessor per machine worker; Process() mutates internal buffers
 // and must not be called concurrently on the same instance. Different instances share
-// nothing. (FFTW planning is not thread-safe; BlockProcessor serialises its own planner calls
-// through core/dsp's plan cache.)
+// nothing but FFTW's planner, which core/dsp's FftPlan guards with one mutex (configuration
+// of different machines' processors may run concurrently).
 #pragma once
 
 #include <array>
