@@ -266,6 +266,18 @@ TEST_F(DecoupleInspect, DecoupleRejectsBadInputWithExitCode2) {
   EXPECT_NE(err.find("has no \"coupled\" part"), std::string::npos) << err;
 }
 
+TEST_F(DecoupleInspect, DecoupleFailsWithExitCode1WhenABinIsTooIllConditioned) {
+  ASSERT_TRUE(WriteFrfSet(CoupledModelSet(model_, false), dir_ / "coupled").ok());
+  std::string err;
+  // Every condition number is >= 1, so a limit of 1 rejects the first bin.
+  EXPECT_EQ(RunTool({"decouple", (dir_ / "coupled").string(), "--at", "p", "--max-condition",
+                     "1"},
+                    dir_, "decouple", nullptr, &err),
+            1);
+  EXPECT_NE(err.find("Hz"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "dec"));
+}
+
 TEST_F(DecoupleInspect, InspectDescribesACoupledSetWithItsChecks) {
   ASSERT_TRUE(WriteFrfSet(CoupledModelSet(model_, true), dir_ / "coupled").ok());
   std::string out, err;

@@ -363,6 +363,16 @@ TEST_F(RecordReplay, ReplayLoopContinuesSequenceAndTimeAcrossPasses) {
   }
 }
 
+TEST_F(RecordReplay, ReplayFailsWithExitCode1WhenNobodySubscribes) {
+  std::ofstream(dir_ / "export.txt") << "Sample rate: 100 Hz\nA1-X\n1\n2\n";
+  std::string err;
+  EXPECT_EQ(RunTool({"replay", (dir_ / "export.txt").string(), "--fast", "--wait", "0.3",
+                     "--domain", Domain()},
+                    dir_, "replay", nullptr, &err),
+            1);
+  EXPECT_NE(err.find("no daemon subscribed to the block topic"), std::string::npos) << err;
+}
+
 TEST_F(RecordReplay, EverySubcommandHasHelp) {
   for (const char* cmd : {"record", "replay"}) {
     std::string out;
