@@ -129,6 +129,16 @@ void DecideGearVerdict(const VerdictTopology& t, const VerdictInputs& in,
     const double w = std::max(in.path_criterion[p], 0.0) / static_cast<double>(seen.size());
     for (int m : seen) score[m] += w;
   }
+  if (in.mesh_evidence.size() == meshes) {
+    double total = 0.0;
+    for (double v : in.mesh_evidence) total += std::isfinite(v) && v > 0.0 ? v : 0.0;
+    if (total > 0.0) {
+      for (std::size_t m = 0; m < meshes; ++m) {
+        const double v = in.mesh_evidence[m];
+        score[m] = std::isfinite(v) && v > 0.0 ? v : 0.0;
+      }
+    }
+  }
   std::uint32_t candidate_meshes = 0;  // bit set
   for (std::size_t g = 0; g < t.gear_names.size(); ++g) {
     if (in_group(t.gear_shaft[g]) && t.gear_mesh[g] >= 0) candidate_meshes |= 1u << t.gear_mesh[g];

@@ -18,9 +18,11 @@
 // beating), never against zero. Exceedance of shaft s: e_s = max(raw_s / raw_thr_s,
 // rec_s / rec_thr_s). No shaft with e_s >= 1 -> kNoFault.
 //
-// Mesh evidence: each path "sees" the meshes of the gears nearest its bearing; a path that
-// sees n meshes adds criterion / n to each of them. A path seeing a single mesh is clean
-// evidence for it; a path on a shaft shared by two meshes splits its weight.
+// Mesh evidence: the dominant path restricts the meshes to those it "sees" (the meshes of the
+// gears nearest its bearing). Among those the mesh score decides: each path adds its weight
+// / n to each of the n meshes it sees (a path seeing one mesh is clean evidence for it; a
+// path on a shaft shared by two meshes splits its weight). The weight is the caller's
+// per-mesh evidence when given (VerdictInputs::mesh_evidence), else the path criterion.
 //
 // Confidence in [0, 1] = strength x shaft separation x mesh separation:
 //   strength   = 1 - 1/e_max (0 at the threshold, -> 1 far above it),
@@ -85,6 +87,11 @@ struct VerdictInputs {
   std::span<const double> raw_threshold;            // per shaft (> 0)
   std::span<const double> reconstructed_threshold;  // per shaft (> 0)
   std::span<const double> path_criterion;           // per path (>= 0), the dominant-path criterion
+  // Optional, per mesh (>= 0): evidence that this mesh is the faulty one, computed by the
+  // caller; when given and not all zero it replaces the path-criterion weights as the mesh
+  // score (the pipeline passes the bearing FORCES' sideband excess, split over the meshes
+  // each path sees). Empty = path-criterion weights.
+  std::span<const double> mesh_evidence;
   int dominant_path = -1;
   double alarm_factor = 2.0;
   bool learning = false;  // thresholds not yet known

@@ -107,7 +107,11 @@ struct BlockProcessor::Impl {
   std::vector<double> path_criterion;
   std::vector<double> criterion_healthy;  // mean criterion per path over the baseline blocks
   int criterion_blocks = 0;
-  std::vector<double> indicators;  // raw (shafts) then reconstructed (shafts)
+  std::vector<double> path_force;          // per path: |F|^2 on the sideband lines
+  std::vector<double> path_force_healthy;  // its mean over the baseline blocks
+  int path_force_blocks = 0;
+  std::vector<double> mesh_evidence;  // per mesh, from the path_force excess
+  std::vector<double> indicators;     // raw (shafts) then reconstructed (shafts)
   std::vector<double> raw_thr;
   std::vector<double> rec_thr;
   std::vector<MeshLines> meshes_now;
@@ -473,6 +477,9 @@ Result<BlockProcessor> BlockProcessor::Create(MachineSetup setup) {
   impl->path_share.assign(impl->paths, 0.0);
   impl->path_criterion.assign(impl->paths, 0.0);
   impl->criterion_healthy.assign(impl->paths, 0.0);
+  impl->path_force.assign(impl->paths, 0.0);
+  impl->path_force_healthy.assign(impl->paths, 0.0);
+  impl->mesh_evidence.assign(impl->unit_meshes.size(), 0.0);
   impl->indicators.assign(2 * shafts, 0.0);
   impl->raw_thr.assign(shafts, 0.0);
   impl->rec_thr.assign(shafts, 0.0);
@@ -651,6 +658,7 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
   for (std::size_t p = 0; p < P; ++p) {
     double band = 0.0;
     double side = 0.0;
+    double force = 0.0;
     const auto pi = static_cast<Eigen::Index>(p);
     for (Eigen::Index i = 0; i < in_range; ++i) {
       const std::size_t k = s.map.first_bin + static_cast<std::size_t>(i);
@@ -660,8 +668,12 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
       double e = 0.0;
       for (std::size_t c = 0; c < C; ++c) e += std::norm(hk(static_cast<Eigen::Index>(c), pi) * f);
       band += e;
-      if (s.sideband_mask[k]) side += e;
+      if (s.sideband_mask[k]) {
+        side += e;
+        force += std::norm(f);
+      }
     }
+    im.path_force[p] = force;
     im.path_energy[p] = band;
     im.path_criterion[p] =
         o.criterion == AnalysisOptions::DominantCriterion::kBandEnergy ? band : side;
@@ -725,6 +737,27 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
     if (any) {
       for (std::size_t p = 0; p < P; ++p) {
         im.path_criterion[p] = std::max(0.0, im.path_criterion[p] - im.criterion_healthy[p]);
+      }
+    }
+  }
+  // Mesh evidence: the bearing FORCES' energy on the sideband lines, in excess of the healthy
+  // level, split over the meshes each path sees. Forces locate the source; contributions
+  // also weigh the housing's transfer, which favours whichever seat is most mobile.
+  if (!baseline_learned && speed > 0.0) {
+    ++im.path_force_blocks;
+    for (std::size_t p = 0; p < P; ++p) {
+      im.path_force_healthy[p] +=
+          (im.path_force[p] - im.path_force_healthy[p]) / im.path_force_blocks;
+    }
+  }
+  std::fill(im.mesh_evidence.begin(), im.mesh_evidence.end(), 0.0);
+  if (baseline_learned && im.path_force_blocks > 0) {
+    for (std::size_t p = 0; p < P; ++p) {
+      const auto& seen = im.topology.path_meshes[p];
+      if (seen.empty()) continue;
+      const double excess = std::max(0.0, im.path_force[p] - im.path_force_healthy[p]);
+      for (int m : seen) {
+        im.mesh_evidence[static_cast<std::size_t>(m)] += excess / static_cast<double>(seen.size());
       }
     }
   }
@@ -798,6 +831,7 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
   vin.raw_threshold = im.raw_thr;
   vin.reconstructed_threshold = im.rec_thr;
   vin.path_criterion = im.path_criterion;
+  if (speed > 0.0) vin.mesh_evidence = im.mesh_evidence;
   vin.dominant_path = dominant;
   vin.alarm_factor = o.alarm_factor;
   vin.learning = learning;
@@ -846,6 +880,8 @@ void BlockProcessor::ResetBaseline() noexcept {
   if (!impl_->baseline->learned()) {
     impl_->criterion_blocks = 0;
     std::fill(impl_->criterion_healthy.begin(), impl_->criterion_healthy.end(), 0.0);
+    impl_->path_force_blocks = 0;
+    std::fill(impl_->path_force_healthy.begin(), impl_->path_force_healthy.end(), 0.0);
   }
 }
 const MachineSetup& BlockProcessor::setup() const noexcept { return impl_->setup; }

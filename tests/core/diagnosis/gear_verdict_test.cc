@@ -37,6 +37,7 @@ struct Case {
   std::vector<double> crit = {1, 1, 1};
   int dominant = 0;
   bool learning = false;
+  std::vector<double> mesh_evidence;
 };
 
 GearVerdict Decide(const VerdictTopology& t, const Case& c) {
@@ -52,6 +53,7 @@ GearVerdict Decide(const VerdictTopology& t, const Case& c) {
   in.dominant_path = c.dominant;
   in.alarm_factor = 2.0;
   in.learning = c.learning;
+  in.mesh_evidence = c.mesh_evidence;
   DecideGearVerdict(t, in, v);
   return v;
 }
@@ -137,6 +139,30 @@ TEST(GearVerdictTest, SharedBearingWithBalancedEndsKeepsBothMeshesAndSaysSo) {
   EXPECT_EQ(v.mesh, -1);
   EXPECT_DOUBLE_EQ(v.confidence, 0.0);  // mesh separation is zero
   EXPECT_NE(std::string(v.reason.view()).find("does not separate their meshes"), std::string::npos);
+}
+
+TEST(GearVerdictTest, MeshEvidenceOverridesBalancedPathWeightsOnASharedBearing) {
+  Case c;
+  c.rec = {1, 3, 3};
+  c.crit = {1, 6, 5};            // path weights alone would lean to mesh G3-G4
+  c.dominant = 1;                // B2 sees both meshes
+  c.mesh_evidence = {9.0, 1.0};  // but the evidence points at mesh G1-G2
+  const GearVerdict v = Decide(Table1(), c);
+  EXPECT_EQ(v.gear_name, "G2") << v.reason.view();
+  ASSERT_EQ(v.candidates.size(), 1u);
+  EXPECT_EQ(v.mesh, 0);
+}
+
+TEST(GearVerdictTest, MeshEvidenceCannotOverrideADominantPathOfTheOtherEnd) {
+  Case c;
+  c.rec = {1, 3, 3};
+  c.crit = {1, 2, 5};
+  c.dominant = 2;  // B3 sees mesh G3-G4 only
+  c.mesh_evidence = {9.0, 1.0};
+  const GearVerdict v = Decide(Table1(), c);
+  EXPECT_EQ(v.mesh, 1);
+  EXPECT_EQ(v.candidates.size(), 2u);
+  EXPECT_DOUBLE_EQ(v.confidence, 0.0);  // the evidence conflicts: no separation
 }
 
 TEST(GearVerdictTest, DistinctToothCountsTellEveryGearApart) {

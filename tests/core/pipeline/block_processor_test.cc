@@ -280,6 +280,37 @@ TEST(BlockProcessorTest, HealthyGearboxGivesNoFaultAgainstItsLearnedBaseline) {
   }
 }
 
+TEST(BlockProcessorTest, ConfiguredThresholdsJudgeFromTheFirstBlock) {
+  // A normalised SES indicator of 1 = five harmonics summing to the depth of a fully
+  // modulated envelope: far above a healthy gearbox, far below a broken tooth.
+  MachineSetup s = MakeSetup(Table1Machine());
+  s.options.raw_thresholds = {1.0, 1.0, 1.0};
+  s.options.reconstructed_thresholds = {1.0, 1.0, 1.0};
+  auto p = BlockProcessor::Create(s);
+  ASSERT_TRUE(p.ok()) << p.error();
+  EXPECT_EQ(p->baseline_blocks_needed(), 0);
+  std::uint64_t seq = 0;
+  GearboxSimulator healthy = MakeSimulator(Table1Machine(), FaultType::kNone, "", 11);
+  BlockResult r = RunBlocks(p.value(), healthy, 1, seq);
+  EXPECT_EQ(r.verdict.state, FaultState::kNoFault) << r.verdict.reason.view();
+  EXPECT_DOUBLE_EQ(r.shafts[0].raw_threshold, 1.0);
+  GearboxSimulator broken = MakeSimulator(Table1Machine(), FaultType::kToothFracture, "G1", 11);
+  r = RunBlocks(p.value(), broken, 1, seq);
+  EXPECT_NE(r.verdict.state, FaultState::kNoFault);
+  EXPECT_EQ(r.verdict.gear_name, "G1") << r.verdict.reason.view();
+}
+
+TEST(BlockProcessorCreateTest, RejectsThresholdListsOfTheWrongLength) {
+  MachineSetup s = MakeSetup(Table1Machine());
+  s.options.raw_thresholds = {1.0, 1.0};
+  s.options.reconstructed_thresholds = {1.0, 1.0, 1.0};
+  const auto p = BlockProcessor::Create(s);
+  ASSERT_FALSE(p.ok());
+  EXPECT_EQ(p.error(),
+            "machine 'sim': options.raw_thresholds and reconstructed_thresholds need 3 "
+            "values each (one per shaft), got 2 and 3");
+}
+
 struct Expectation {
   const char* gear;
   std::vector<std::string> candidates;
