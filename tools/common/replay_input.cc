@@ -136,7 +136,6 @@ Status MapRecordingChannels(Recording& r, const std::vector<std::string>& map) {
   Result<std::vector<std::size_t>> kept = ApplyChannelMap(map, r.layout.channels, {});
   if (!kept) return Error{kept.error()};
   if (kept->size() == r.layout.channels.size()) return Status::Ok();
-  const std::size_t s = r.layout.samples_per_channel;
   std::vector<float> samples;
   std::vector<ChannelInfo> channels;
   for (std::size_t c : *kept) channels.push_back(r.layout.channels[c]);
@@ -149,7 +148,6 @@ Status MapRecordingChannels(Recording& r, const std::vector<std::string>& map) {
   }
   r.layout.channels = std::move(channels);
   r.samples = std::move(samples);
-  (void)s;
   return Status::Ok();
 }
 
