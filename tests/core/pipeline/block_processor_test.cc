@@ -213,7 +213,11 @@ TEST(BlockProcessorTest, ContributionsOfAllPathsReproduceTheMeasuredChannel) {
 }
 
 TEST(BlockProcessorTest, AllocatesNothingOnceTheBlockShapeIsConfigured) {
-  auto p = BlockProcessor::Create(MakeSetup(Table1Machine()));
+  // Configured thresholds, so the measured block runs the whole verdict (not learning).
+  MachineSetup setup = MakeSetup(Table1Machine());
+  setup.options.raw_thresholds = {1.0, 1.0, 1.0};
+  setup.options.reconstructed_thresholds = {1.0, 1.0, 1.0};
+  auto p = BlockProcessor::Create(setup);
   ASSERT_TRUE(p.ok()) << p.error();
   GearboxSimulator sim = MakeSimulator(Table1Machine(), FaultType::kChippedTooth, "G1", 5);
   AccelBlock block;
@@ -227,6 +231,7 @@ TEST(BlockProcessorTest, AllocatesNothingOnceTheBlockShapeIsConfigured) {
   const ProcessOutcome o = p->Process(block.view(), r);
   const long after = g_allocations.load();
   EXPECT_TRUE(o.accepted());
+  EXPECT_EQ(r.verdict.state, FaultState::kAlarm) << r.verdict.reason.view();
   EXPECT_EQ(after - before, 0);
 }
 
