@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   gearpath::tools::AddReplayCommand(app, exit_code);
   gearpath::tools::AddDecoupleCommand(app, exit_code);
   gearpath::tools::AddInspectCommand(app, exit_code);
+  gearpath::tools::AddReportCommand(app, exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

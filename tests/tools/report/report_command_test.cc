@@ -2,6 +2,7 @@
 // then a tooth fracture on G1) is reported by the built tool; the page must parse as XML, draw
 // one bar per path and one marker per shaft harmonic, and carry exactly the numbers of a
 // BlockProcessor run here on the same blocks. Bad inputs exit with code 2 and say why.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,8 +14,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "core/diagnosis/train_layout.h"
 #include "core/io/recording.h"
@@ -52,8 +51,8 @@ struct ToolRun {
 ToolRun RunTool(const std::string& args, const fs::path& dir) {
   const fs::path out = dir / "tool.out";
   const fs::path err = dir / "tool.err";
-  const std::string cmd = std::string(GEARPATH_TOOL_PATH) + " " + args + " >" + out.string() +
-                          " 2>" + err.string();
+  const std::string cmd =
+      std::string(GEARPATH_TOOL_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   ToolRun r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -110,9 +109,11 @@ const Fixture& Shared() {
     auto model = LumpedGearboxModel::Create(Table1Parameters());
     EXPECT_TRUE(model.ok());
     const GearTrain train = GearTrain::Table1();
-    Eigen::VectorXd f(kBlock / 2);
-    for (Eigen::Index k = 0; k < f.size(); ++k) f[k] = static_cast<double>(k + 1) * kFs / kBlock;
-    auto set = MakeModelFrfSet(model.value(), train, f);
+    Eigen::VectorXd grid(kBlock / 2);
+    for (Eigen::Index k = 0; k < grid.size(); ++k) {
+      grid[k] = static_cast<double>(k + 1) * kFs / kBlock;
+    }
+    auto set = MakeModelFrfSet(model.value(), train, grid);
     EXPECT_TRUE(set.ok());
 
     Recording rec;
@@ -211,7 +212,8 @@ TEST(ReportCommandTest, TableAndVerdictAreTheBlockResults) {
   const BlockResult& truth = f.results[kReportedBlock];
   ASSERT_EQ(truth.shafts.size(), 3u);
   for (const BlockShaftIndicator& sh : truth.shafts) {
-    const std::vector<double> v = RowValues(html, "<tr data-shaft=\"" + std::string(sh.shaft) + "\">");
+    const std::vector<double> v =
+        RowValues(html, "<tr data-shaft=\"" + std::string(sh.shaft) + "\">");
     ASSERT_EQ(v.size(), 6u) << sh.shaft;
     EXPECT_EQ(v[0], sh.characteristic_hz);
     EXPECT_EQ(v[1], sh.raw);
@@ -246,7 +248,9 @@ TEST(ReportCommandTest, SpanReportAddsOneTrendRowPerBlock) {
     EXPECT_EQ(v[1], f.results[static_cast<std::size_t>(b)].shafts[0].reconstructed);
   }
   EXPECT_EQ(Count(html, "<polyline class=\"trend-reconstructed\""), 3u);
-  if (HavePython()) EXPECT_EQ(ParseXml(out), 0);
+  if (HavePython()) {
+    EXPECT_EQ(ParseXml(out), 0);
+  }
 }
 
 TEST(ReportCommandTest, RejectsMissingRecording) {
@@ -289,8 +293,9 @@ TEST(ReportCommandTest, RejectsUnknownMachine) {
 
 TEST(ReportCommandTest, RejectsThresholdListsOfTheWrongLength) {
   const Fixture& f = Shared();
-  const ToolRun r = RunTool(ReportArgs(f, "--block 0 --raw-thresholds 1,2 "
-                                          "--reconstructed-thresholds 1,2",
+  const ToolRun r = RunTool(ReportArgs(f,
+                                       "--block 0 --raw-thresholds 1,2 "
+                                       "--reconstructed-thresholds 1,2",
                                        f.dir / "x.html"),
                             f.dir);
   EXPECT_EQ(r.code, 2);

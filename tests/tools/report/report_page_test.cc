@@ -3,12 +3,12 @@
 #include "tools/report/report_page.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include "tools/report/report_charts.h"
 #include "tools/report/xml_text.h"
@@ -64,7 +64,9 @@ TEST(XmlEscapeTest, EscapesTheFiveXmlSpecialCharacters) {
   EXPECT_EQ(XmlEscape("a<b>&\"c\"'d'"), "a&lt;b&gt;&amp;&quot;c&quot;&#39;d&#39;");
   EXPECT_EQ(XmlEscape("plain text"), "plain text");
   EXPECT_EQ(XmlEscape(""), "");
-  EXPECT_EQ(XmlEscape(std::string("a\x01" "b\tc")), "a?b\tc");
+  EXPECT_EQ(XmlEscape(std::string("a\x01"
+                                  "b\tc")),
+            "a?b\tc");
 }
 
 TEST(XmlEscapeTest, ExactNumberReadsBackBitForBit) {
@@ -136,8 +138,7 @@ TEST(KurtogramSvgTest, DrawsOneCellPerBandAndOutlinesTheChosenBand) {
 }
 
 TEST(PathBarsSvgTest, BarHeightsAreProportionalToTheShares) {
-  const std::string svg =
-      PathBarsSvg({{"A", "a", 0.25, 1.0, 0.0}, {"B", "b", 0.75, 3.0, 0.0}}, 1);
+  const std::string svg = PathBarsSvg({{"A", "a", 0.25, 1.0, 0.0}, {"B", "b", 0.75, 3.0, 0.0}}, 1);
   EXPECT_EQ(Count(svg, "<rect class=\"path-bar"), 2u);
   EXPECT_EQ(Count(svg, "<rect class=\"path-bar dominant\" data-path=\"B\""), 1u);
   // Plot height 320 - 40 - 55 = 225 px: 25 % -> 56.25 px, 75 % -> 168.75 px.

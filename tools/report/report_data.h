@@ -1,0 +1,115 @@
+// ReportData: everything `gearpath report` draws for one block (and, optionally, the indicator
+// trend over a span of blocks), as plain values copied out of the pipeline.
+//
+// Why a separate plain struct: the page renderer (report_page.h) then depends on nothing but
+// this header, so it can be tested on hand-made data, and the command stays the only place that
+// talks to the BlockProcessor. Frequencies in Hz, shares in [0, 1], indicators dimensionless
+// (sums of normalised squared-envelope-spectrum amplitudes, core/dsp/envelope_spectrum.h).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gearpath::tools {
+
+inline constexpr std::size_t kReportHarmonics = 5;  // seed Sec. 4.3: first five harmonics
+
+struct ReportPath {
+  std::string name;     // e.g. "B1x"
+  std::string bearing;  // e.g. "B1, input shaft"
+  double share = 0.0;   // energy share in [0, 1]
+  double energy = 0.0;
+  double criterion = 0.0;
+};
+
+// One kurtogram map: rows of the 1/3-binary tree (core/dsp/kurtogram.h), band 0 = lowest.
+struct ReportKurtogram {
+  std::string title;
+  double nyquist_hz = 0.0;
+  std::vector<double> row_level;          // Antoni's display level per row (0, 1, 1.6, ...)
+  std::vector<std::vector<double>> rows;  // spectral kurtosis per band
+  int chosen_row = -1;                    // -1: no band chosen
+  int chosen_index = -1;
+  bool significant = false;
+  double low_hz = 0.0;  // the band used for the envelope
+  double high_hz = 0.0;
+  double kurtosis = 0.0;
+};
+
+struct ReportShaft {
+  std::string name;
+  double rate_hz = 0.0;
+  double raw = 0.0;
+  double reconstructed = 0.0;
+  double enhancement_percent = 0.0;
+  double raw_threshold = 0.0;  // 0 while the baseline is being learned
+  double reconstructed_threshold = 0.0;
+  std::array<double, kReportHarmonics> raw_harmonics{};
+  std::array<double, kReportHarmonics> reconstructed_harmonics{};
+};
+
+// Squared envelope spectrum of one signal (bins at k * bin_hz).
+struct ReportSes {
+  std::string title;
+  double bin_hz = 0.0;
+  std::vector<double> values;
+  double band_low_hz = 0.0;  // the envelope band it was demodulated from
+  double band_high_hz = 0.0;
+};
+
+struct ReportTrendPoint {
+  std::size_t block_index = 0;
+  std::uint64_t sequence = 0;
+  std::string dominant_path;
+  std::string state;  // "learning", "no_fault", "suspected", "alarm"
+  std::string gear;
+  std::vector<double> raw;                      // per shaft
+  std::vector<double> reconstructed;            // per shaft
+  std::vector<double> reconstructed_threshold;  // per shaft
+};
+
+struct ReportData {
+  // Where it comes from.
+  std::string machine_id;
+  std::string recording;
+  std::string frf_source;
+  std::size_t block_index = 0;
+  std::size_t block_count = 0;  // blocks in the recording
+  std::uint64_t sequence = 0;
+  std::int64_t t0_ns = 0;
+  double sample_rate_hz = 0.0;
+  std::uint32_t samples_per_channel = 0;
+  double speed_hz = 0.0;
+  std::string speed_source;
+  int baseline_learned = 0;
+  int baseline_needed = 0;
+  std::size_t rejected_blocks = 0;  // blocks before this one the pipeline rejected
+
+  // Paths.
+  std::vector<ReportPath> paths;
+  int dominant_path = -1;
+  std::string indicator_channel;  // e.g. "p1 x"
+
+  // Envelope analysis.
+  ReportKurtogram kurtogram_raw;
+  ReportKurtogram kurtogram_reconstructed;
+  ReportSes ses_raw;
+  ReportSes ses_reconstructed;
+  std::vector<ReportShaft> shafts;
+
+  // Verdict.
+  std::string state;
+  std::string gear;
+  std::string shaft;
+  double confidence = 0.0;
+  std::vector<std::string> candidates;
+  std::string reason;
+
+  // Indicator trend over a span (empty for a single block).
+  std::vector<ReportTrendPoint> trend;
+};
+
+}  // namespace gearpath::tools

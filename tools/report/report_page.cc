@@ -1,0 +1,210 @@
+#include "tools/report/report_page.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include "tools/report/report_charts.h"
+#include "tools/report/xml_text.h"
+
+namespace gearpath::tools {
+namespace {
+
+constexpr char kStyle[] = R"(
+body { font-family: "DejaVu Sans", "Liberation Sans", Arial, sans-serif; margin: 24px;
+       color: #222222; background: #fafafa; }
+h1 { font-size: 22px; margin-bottom: 4px; }
+h2 { font-size: 17px; margin: 22px 0 8px 0; border-bottom: 1px solid #cccccc; }
+table { border-collapse: collapse; font-size: 13px; }
+th, td { border: 1px solid #cccccc; padding: 4px 9px; text-align: right; }
+th { background: #eeeeee; }
+td.name, th.name { text-align: left; }
+.row { display: flex; flex-wrap: wrap; gap: 12px; }
+svg { border: 1px solid #dddddd; background: #ffffff; }
+.verdict { font-size: 18px; font-weight: bold; padding: 10px 14px; border-radius: 4px; }
+.state-alarm { background: #f8d0d0; border: 2px solid #c00000; }
+.state-suspected { background: #fde8c8; border: 2px solid #d07000; }
+.state-no_fault { background: #d8f0d8; border: 2px solid #2a8a2a; }
+.state-learning { background: #e4e4f4; border: 2px solid #5050a0; }
+.over { color: #c00000; font-weight: bold; }
+.meta td { text-align: left; }
+.note { font-size: 12px; color: #555555; }
+)";
+
+void Cell(std::string& s, double value, int digits = 4, bool over = false) {
+  fmt::format_to(std::back_inserter(s), "<td data-value=\"{}\"{}>{}</td>", ExactNumber(value),
+                 over ? " class=\"over\"" : "", XmlEscape(DisplayNumber(value, digits)));
+}
+
+void Meta(std::string& s, std::string_view key, std::string_view value) {
+  fmt::format_to(std::back_inserter(s), "<tr><th class=\"name\">{}</th><td>{}</td></tr>\n",
+                 XmlEscape(key), XmlEscape(value));
+}
+
+std::string StateLabel(const std::string& state) {
+  if (state == "no_fault") return "NO FAULT";
+  if (state == "suspected") return "SUSPECTED";
+  if (state == "alarm") return "ALARM";
+  if (state == "learning") return "LEARNING (baseline not complete, no verdict yet)";
+  return state;
+}
+
+}  // namespace
+
+std::string RenderReportHtml(const ReportData& d) {
+  std::string s;
+  s.reserve(1 << 16);
+  const auto out = std::back_inserter(s);
+  fmt::format_to(
+      out,
+      "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\" lang=\"en\">\n"
+      "<head>\n<meta charset=\"utf-8\"/>\n<title>{}</title>\n<style>{}</style>\n"
+      "</head>\n<body>\n",
+      XmlEscape(fmt::format("gearpath report - {} block {}", d.machine_id, d.block_index)), kStyle);
+  fmt::format_to(out, "<h1>gearpath report: machine {}, block {}{}</h1>\n", XmlEscape(d.machine_id),
+                 d.block_index,
+                 d.trend.size() > 1
+                     ? XmlEscape(fmt::format(" (span {}-{})", d.trend.front().block_index,
+                                             d.trend.back().block_index))
+                     : std::string());
+
+  // Summary of where the numbers come from.
+  s += "<section id=\"summary\">\n<table class=\"meta\">\n";
+  Meta(s, "recording", d.recording);
+  Meta(s, "FRF set", d.frf_source);
+  Meta(s, "block",
+       fmt::format("{} of {} (sequence {}, t0 {} ns)", d.block_index, d.block_count, d.sequence,
+                   d.t0_ns));
+  Meta(s, "block shape",
+       fmt::format("{} samples at {} Hz", d.samples_per_channel,
+                   DisplayNumber(d.sample_rate_hz, 6)));
+  Meta(s, "input speed", fmt::format("{} Hz ({})", DisplayNumber(d.speed_hz, 6), d.speed_source));
+  Meta(s, "indicator channel", d.indicator_channel);
+  Meta(s, "healthy baseline",
+       d.baseline_needed > 0
+           ? fmt::format("{} of {} blocks learned", d.baseline_learned, d.baseline_needed)
+           : std::string("configured thresholds"));
+  if (d.rejected_blocks > 0) {
+    Meta(s, "rejected blocks",
+         fmt::format("{} earlier blocks rejected by validation", d.rejected_blocks));
+  }
+  s += "</table>\n</section>\n";
+
+  // Verdict.
+  fmt::format_to(out, "<h2>Verdict</h2>\n<section id=\"verdict\" class=\"verdict state-{}\">\n",
+                 XmlEscape(d.state));
+  std::string headline = StateLabel(d.state);
+  if (!d.gear.empty()) {
+    headline += fmt::format(": gear {} (shaft {}, confidence {})", d.gear, d.shaft,
+                            DisplayNumber(d.confidence, 2));
+  }
+  fmt::format_to(out, "<p class=\"verdict-text\" data-state=\"{}\" data-gear=\"{}\">{}</p>\n",
+                 XmlEscape(d.state), XmlEscape(d.gear), XmlEscape(headline));
+  if (d.candidates.size() > 1) {
+    std::string c;
+    for (const auto& name : d.candidates) c += (c.empty() ? "" : ", ") + name;
+    fmt::format_to(out, "<p class=\"note\">candidates the evidence cannot separate: {}</p>\n",
+                   XmlEscape(c));
+  }
+  if (!d.reason.empty()) {
+    fmt::format_to(out, "<p class=\"note verdict-reason\">{}</p>\n", XmlEscape(d.reason));
+  }
+  s += "</section>\n";
+
+  // Paths.
+  s += "<h2>Transfer paths</h2>\n<section id=\"paths\" class=\"row\">\n";
+  s += PathBarsSvg(d.paths, d.dominant_path);
+  s += "<table class=\"paths\">\n<tr><th class=\"name\">path</th><th class=\"name\">bearing</th>"
+       "<th>share</th><th>energy</th><th>criterion</th></tr>\n";
+  for (std::size_t i = 0; i < d.paths.size(); ++i) {
+    const ReportPath& p = d.paths[i];
+    fmt::format_to(
+        out, "<tr data-path=\"{}\"><td class=\"name\">{}{}</td><td class=\"name\">{}</td>",
+        XmlEscape(p.name), XmlEscape(p.name),
+        static_cast<int>(i) == d.dominant_path ? " (dominant)" : "", XmlEscape(p.bearing));
+    Cell(s, p.share);
+    Cell(s, p.energy);
+    Cell(s, p.criterion);
+    s += "</tr>\n";
+  }
+  s += "</table>\n</section>\n";
+
+  // Kurtograms.
+  s += "<h2>Kurtograms (spectral kurtosis per band and level)</h2>\n"
+       "<section id=\"kurtograms\" class=\"row\">\n";
+  s += KurtogramSvg(d.kurtogram_raw);
+  s += KurtogramSvg(d.kurtogram_reconstructed);
+  s += "</section>\n";
+
+  // Squared envelope spectra on a common scale up to 6x the highest shaft rate.
+  double max_rate = 0.0;
+  for (const auto& sh : d.shafts) max_rate = std::max(max_rate, sh.rate_hz);
+  const double max_hz = max_rate > 0.0 ? 6.0 * max_rate : 100.0;
+  double y_max = 0.0;
+  for (const ReportSes* ses : {&d.ses_raw, &d.ses_reconstructed}) {
+    for (std::size_t k = 1; k < ses->values.size(); ++k) {
+      if (static_cast<double>(k) * ses->bin_hz > max_hz) break;
+      if (std::isfinite(ses->values[k])) y_max = std::max(y_max, ses->values[k]);
+    }
+  }
+  y_max = y_max > 0.0 ? 1.1 * y_max : 1.0;
+  s += "<h2>Squared envelope spectra (same scale)</h2>\n<section id=\"ses\" class=\"row\">\n";
+  s += SesSvg(d.ses_raw, d.shafts, max_hz, y_max, false);
+  s += SesSvg(d.ses_reconstructed, d.shafts, max_hz, y_max, true);
+  s += "</section>\n";
+
+  // Indicator table.
+  s += "<h2>Fault indicators (sum of the first five SES harmonics)</h2>\n"
+       "<section id=\"indicators\">\n<table class=\"indicators\">\n"
+       "<tr><th class=\"name\">shaft</th><th>rate (Hz)</th><th>raw</th><th>raw threshold</th>"
+       "<th>reconstructed</th><th>reconstructed threshold</th><th>enhancement (%)</th></tr>\n";
+  for (const ReportShaft& sh : d.shafts) {
+    fmt::format_to(out, "<tr data-shaft=\"{}\"><td class=\"name\">{}</td>", XmlEscape(sh.name),
+                   XmlEscape(sh.name));
+    Cell(s, sh.rate_hz, 6);
+    Cell(s, sh.raw, 4, sh.raw_threshold > 0.0 && sh.raw > sh.raw_threshold);
+    Cell(s, sh.raw_threshold);
+    Cell(s, sh.reconstructed, 4,
+         sh.reconstructed_threshold > 0.0 && sh.reconstructed > sh.reconstructed_threshold);
+    Cell(s, sh.reconstructed_threshold);
+    Cell(s, sh.enhancement_percent, 4);
+    s += "</tr>\n";
+  }
+  s += "</table>\n<p class=\"note\">Thresholds are 0 while the healthy baseline is being "
+       "learned. Red: indicator over its threshold. Enhancement = 100 x reconstructed / raw.</p>\n"
+       "</section>\n";
+
+  // Trend over the span.
+  if (d.trend.size() > 1) {
+    std::vector<std::string> names;
+    for (const auto& sh : d.shafts) names.push_back(sh.name);
+    s += "<h2>Indicator trend</h2>\n<section id=\"trend\">\n";
+    s += TrendSvg(d.trend, names);
+    s += "<table class=\"trend\">\n<tr><th>block</th><th>sequence</th><th class=\"name\">dominant "
+         "path</th><th class=\"name\">state</th><th class=\"name\">gear</th>";
+    for (const auto& n : names) {
+      fmt::format_to(out, "<th>{} raw</th><th>{} reconstructed</th>", XmlEscape(n), XmlEscape(n));
+    }
+    s += "</tr>\n";
+    for (const auto& p : d.trend) {
+      fmt::format_to(out,
+                     "<tr data-block=\"{}\"><td>{}</td><td>{}</td><td class=\"name\">{}</td>"
+                     "<td class=\"name\">{}</td><td class=\"name\">{}</td>",
+                     p.block_index, p.block_index, p.sequence, XmlEscape(p.dominant_path),
+                     XmlEscape(p.state), XmlEscape(p.gear));
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        Cell(s, i < p.raw.size() ? p.raw[i] : NAN);
+        Cell(s, i < p.reconstructed.size() ? p.reconstructed[i] : NAN);
+      }
+      s += "</tr>\n";
+    }
+    s += "</table>\n</section>\n";
+  }
+  s += "<p class=\"note\">Generated by gearpath report. Self-contained: no script, no external "
+       "resource.</p>\n</body>\n</html>\n";
+  return s;
+}
+
+}  // namespace gearpath::tools
