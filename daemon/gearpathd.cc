@@ -264,6 +264,12 @@ void Gearpathd::Impl::HandleBlock(const gearpath_AccelBlock& sample,
   if (!outcome.accepted()) {
     const std::string_view reason = ToString(outcome.reason);
     ++c.rejected;
+    // A rejected block does not advance the sequence tracker, so the next accepted block will
+    // see its number as part of a gap; remember it so that it is not counted as lost too.
+    if (outcome.reason != RejectReason::kDuplicateSequence &&
+        outcome.reason != RejectReason::kOutOfOrderSequence) {
+      ++c.rejected_in_gap;
+    }
     auto r = c.rejected_by_reason.find(reason);
     if (r == c.rejected_by_reason.end()) r = c.rejected_by_reason.emplace(reason, 0).first;
     ++r->second;
@@ -274,9 +280,12 @@ void Gearpathd::Impl::HandleBlock(const gearpath_AccelBlock& sample,
   }
   const BlockResult& r = m.result;
   ++c.processed;
-  if (r.sequence_gap > 0) {
-    c.lost += r.sequence_gap;
-    spdlog::warn("{}: {} block(s) missing before block {}", m.id, r.sequence_gap, r.sequence);
+  const std::uint64_t explained = std::min(r.sequence_gap, c.rejected_in_gap);
+  c.rejected_in_gap = 0;
+  if (r.sequence_gap > explained) {
+    c.lost += r.sequence_gap - explained;
+    spdlog::warn("{}: {} block(s) missing before block {}", m.id, r.sequence_gap - explained,
+                 r.sequence);
   }
   if (r.sequence_restarted) {
     spdlog::info("{}: sequence restarted at block {} (publisher restart)", m.id, r.sequence);

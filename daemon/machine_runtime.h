@@ -38,7 +38,9 @@ struct MachineCounters {
   std::uint64_t received = 0;
   std::uint64_t processed = 0;
   std::uint64_t rejected = 0;
-  std::uint64_t lost = 0;           // blocks missing from the sequence (gaps), not rejected
+  std::uint64_t lost = 0;           // blocks missing from the sequence: gaps that rejected
+                                    // blocks do not explain (lost upstream or in transit)
+  std::uint64_t rejected_in_gap = 0;  // rejected blocks numbered after the last accepted one
   std::map<std::string, std::uint64_t, std::less<>> rejected_by_reason;
   std::string last_rejection;       // "<reason>: <message>" of the last rejection
   double last_alpha = 0.0;

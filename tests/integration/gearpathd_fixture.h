@@ -179,6 +179,13 @@ class GearpathdOverDds : public ::testing::Test {
   // the last one seen (last_status_, last_state_).
   bool WaitStatus(const std::function<bool(const gearpath_MachineStatus&)>& pred,
                   std::chrono::milliseconds timeout) {
+    return WaitStatusOf(daemon_id_, machine_id_, pred, timeout);
+  }
+
+  // The same for any daemon and machine. Status samples of other daemons are consumed.
+  bool WaitStatusOf(const std::string& daemon_id, const std::string& machine_id,
+                    const std::function<bool(const gearpath_MachineStatus&)>& pred,
+                    std::chrono::milliseconds timeout) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     std::vector<dds::Owned<gearpath_Status>> samples(8);
     std::vector<dds::SampleInfo> infos(8);
@@ -188,10 +195,10 @@ class GearpathdOverDds : public ::testing::Test {
       for (std::size_t i = 0; i < *n; ++i) {
         if (!infos[i].valid_data) continue;
         const gearpath_Status& s = *samples[i];
-        if (dds::GetString(s.daemon_id) != daemon_id_) continue;
+        if (dds::GetString(s.daemon_id) != daemon_id) continue;
         last_state_ = s.state;
         for (const auto& m : dds::View(s.machines)) {
-          if (dds::GetString(m.machine_id) != machine_id_) continue;
+          if (dds::GetString(m.machine_id) != machine_id) continue;
           last_status_ = m;
           if (pred(m)) return true;
         }

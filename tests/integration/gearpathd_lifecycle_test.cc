@@ -124,6 +124,8 @@ TEST_F(GearpathdOverDds, RejectsEveryKindOfBadBlockWithItsReasonAndProcessesTheN
   EXPECT_EQ(last_status_.blocks_received, processed + rejected);
   EXPECT_TRUE(daemon_->WaitForLog("4 block(s) missing before block " + std::to_string(last + 5),
                                   5s));
+  // The numbers of the rejected blocks are not reported as lost: only the real gap is.
+  EXPECT_EQ(daemon_->Log().find("1 block(s) missing"), std::string::npos) << daemon_->Log();
   // One log line per rejected block, with its reason.
   EXPECT_TRUE(daemon_->WaitForLog("rejected (wrong_sample_rate): sample rate 8192 Hz", 5s));
   EXPECT_TRUE(daemon_->running());
