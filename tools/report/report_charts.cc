@@ -68,13 +68,14 @@ void Title(std::string& s, const Frame& f, std::string_view title) {
 
 // Axis lines, ticks and labels of a linear plot [x_lo, x_hi] x [0, y_hi].
 void Axes(std::string& s, const Frame& f, double x_lo, double x_hi, double y_hi,
-          std::string_view x_label, std::string_view y_label, bool x_ticks = true) {
+          std::string_view x_label, std::string_view y_label, bool x_ticks = true,
+          double min_x_step = 0.0) {
   fmt::format_to(std::back_inserter(s),
                  "<path class=\"axis\" d=\"M{:.1f} {:.1f} V{:.1f} H{:.1f}\" fill=\"none\" "
                  "stroke=\"#333333\"/>\n",
                  f.x0(), f.y1(), f.y0(), f.x1());
   if (x_ticks && x_hi > x_lo) {
-    const double step = NiceStep(x_hi - x_lo, 8);
+    const double step = std::max(NiceStep(x_hi - x_lo, 8), min_x_step);
     for (double v = std::ceil(x_lo / step) * step; v <= x_hi + 1e-9 * step; v += step) {
       const double x = f.x0() + (v - x_lo) / (x_hi - x_lo) * f.pw();
       fmt::format_to(std::back_inserter(s),
@@ -95,7 +96,7 @@ void Axes(std::string& s, const Frame& f, double x_lo, double x_hi, double y_hi,
       Text(s, f.x0() - 6.0, y + 4.0, DisplayNumber(v, 4), "end", 11);
     }
   }
-  Text(s, f.x0() + f.pw() / 2.0, f.height - 12.0, x_label, "middle", 12);
+  Text(s, f.x0() + f.pw() / 2.0, f.height - 8.0, x_label, "middle", 12);
   const double yc = f.y1() + f.ph() / 2.0;
   fmt::format_to(std::back_inserter(s),
                  "<text x=\"16\" y=\"{:.1f}\" font-size=\"12\" text-anchor=\"middle\" "
@@ -122,6 +123,8 @@ std::string RampColour(double t) {
 
 std::string PathBarsSvg(const std::vector<ReportPath>& paths, int dominant_path) {
   Frame f;
+  f.height = 335.0;
+  f.bottom = 70.0;  // path name and bearing under each bar, then the axis title
   std::string s;
   Open(s, f, "path-bars", "path contribution shares");
   Title(s, f, "Path contributions (share of contribution energy)");
@@ -243,8 +246,8 @@ std::string KurtogramSvg(const ReportKurtogram& map) {
 std::string SesSvg(const ReportSes& ses, const std::vector<ReportShaft>& shafts, double max_hz,
                    double y_max, bool reconstructed) {
   Frame f;
-  f.height = 340.0;
-  f.top = 56.0;
+  f.height = 380.0;
+  f.top = 96.0;  // title, band, legend row, then one row of harmonic labels per shaft
   std::string s;
   Open(s, f, reconstructed ? "ses ses-reconstructed" : "ses ses-raw", ses.title);
   Title(s, f, ses.title);
@@ -281,7 +284,7 @@ std::string SesSvg(const ReportSes& ses, const std::vector<ReportShaft>& shafts,
                      "data-hz=\"{}\" x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" "
                      "stroke=\"{}\" stroke-dasharray=\"4 3\" stroke-width=\"1.2\"/>\n",
                      XmlEscape(sh.name), h, ExactNumber(hz), x, f.y0(), x, f.y1(), ShaftColour(i));
-      Text(s, x, f.y1() - 4.0 + 10.0 * static_cast<double>(i), fmt::format("{}x", h), "middle", 9,
+      Text(s, x, f.y1() - 4.0 - 10.0 * static_cast<double>(i), fmt::format("{}x", h), "middle", 9,
            fmt::format(" fill=\"{}\"", ShaftColour(i)).c_str());
       fmt::format_to(std::back_inserter(s),
                      "<circle class=\"harmonic-reading\" data-shaft=\"{}\" data-harmonic=\"{}\" "
@@ -290,14 +293,15 @@ std::string SesSvg(const ReportSes& ses, const std::vector<ReportShaft>& shafts,
                      ShaftColour(i));
     }
   }
-  // Legend.
+  // Legend: one row above the plot (markers of coincident shafts are offset by 2 px).
   for (std::size_t i = 0; i < shafts.size(); ++i) {
-    const double y = f.y1() + 14.0 + 14.0 * static_cast<double>(i);
+    const double y = 54.0;
+    const double x = f.x0() + 160.0 * static_cast<double>(i);
     fmt::format_to(std::back_inserter(s),
                    "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" "
                    "stroke-dasharray=\"4 3\" stroke-width=\"1.5\"/>\n",
-                   f.x1() - 170.0, y - 4.0, f.x1() - 150.0, y - 4.0, ShaftColour(i));
-    Text(s, f.x1() - 146.0, y,
+                   x, y - 4.0, x + 20.0, y - 4.0, ShaftColour(i));
+    Text(s, x + 24.0, y,
          fmt::format("{} shaft {} Hz", shafts[i].name, DisplayNumber(shafts[i].rate_hz)), "start",
          11);
   }
@@ -329,7 +333,7 @@ std::string TrendSvg(const std::vector<ReportTrendPoint>& trend,
     }
   }
   y_hi = y_hi > 0.0 ? 1.1 * y_hi : 1.0;
-  Axes(s, f, x_lo, x_hi, y_hi, "block index in the recording", "indicator");
+  Axes(s, f, x_lo, x_hi, y_hi, "block index in the recording", "indicator", true, 1.0);
   const auto xof = [&](double b) { return f.x0() + (b - x_lo) / (x_hi - x_lo) * f.pw(); };
   const auto yof = [&](double v) { return f.y0() - std::clamp(v / y_hi, 0.0, 1.0) * f.ph(); };
   for (std::size_t sh = 0; sh < shaft_names.size(); ++sh) {

@@ -21,7 +21,7 @@ table { border-collapse: collapse; font-size: 13px; }
 th, td { border: 1px solid #cccccc; padding: 4px 9px; text-align: right; }
 th { background: #eeeeee; }
 td.name, th.name { text-align: left; }
-.row { display: flex; flex-wrap: wrap; gap: 12px; }
+.row { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; }
 svg { border: 1px solid #dddddd; background: #ffffff; }
 .verdict { font-size: 18px; font-weight: bold; padding: 10px 14px; border-radius: 4px; }
 .state-alarm { background: #f8d0d0; border: 2px solid #c00000; }
