@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/diagnosis/train_layout.h"
+#include "core/io/frf_set_io.h"
 #include "core/io/recording.h"
 #include "core/model/gear_train.h"
 #include "core/model/lumped_gearbox_model.h"
@@ -91,6 +92,18 @@ std::vector<double> RowValues(const std::string& html, const std::string& row_ma
   return v;
 }
 
+fs::path FixtureDir() {
+  return fs::temp_directory_path() / ("gearpath_report_test_" + std::to_string(getpid()));
+}
+
+// Removes the recording and the pages once every test has run.
+class RemoveFixtureDir : public ::testing::Environment {
+ public:
+  void TearDown() override { fs::remove_all(FixtureDir()); }
+};
+[[maybe_unused]] ::testing::Environment* const kCleanup =
+    ::testing::AddGlobalTestEnvironment(new RemoveFixtureDir);
+
 struct Fixture {
   fs::path dir;
   fs::path recording;
@@ -102,7 +115,7 @@ struct Fixture {
 const Fixture& Shared() {
   static const Fixture f = [] {
     Fixture x;
-    x.dir = fs::temp_directory_path() / ("gearpath_report_test_" + std::to_string(getpid()));
+    x.dir = FixtureDir();
     fs::remove_all(x.dir);
     fs::create_directories(x.dir);
     x.recording = x.dir / "rec";
@@ -251,6 +264,35 @@ TEST(ReportCommandTest, SpanReportAddsOneTrendRowPerBlock) {
   if (HavePython()) {
     EXPECT_EQ(ParseXml(out), 0);
   }
+}
+
+TEST(ReportCommandTest, FrfSetDirectoryGivesTheSameNumbersAsTheBuiltinSet) {
+  const Fixture& f = Shared();
+  const fs::path set_dir = f.dir / "frf";
+  if (!fs::exists(set_dir)) {
+    ASSERT_TRUE(WriteFrfSet(f.setup.frf_set, set_dir).ok());
+  }
+  const fs::path out = f.dir / "frf.html";
+  const ToolRun r =
+      RunTool("report --frf-set " + set_dir.string() + " --train table1 " + "--recording " +
+                  f.recording.string() + " --block " + std::to_string(kReportedBlock) +
+                  " --baseline-blocks " + std::to_string(kHealthyBlocks) + " -o " + out.string(),
+              f.dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = ReadText(out);
+  const BlockResult& truth = f.results[kReportedBlock];
+  for (const BlockShaftIndicator& sh : truth.shafts) {
+    const std::vector<double> v =
+        RowValues(html, "<tr data-shaft=\"" + std::string(sh.shaft) + "\">");
+    ASSERT_EQ(v.size(), 6u);
+    EXPECT_EQ(v[3], sh.reconstructed);
+  }
+  const ToolRun missing =
+      RunTool("report --frf-set " + (f.dir / "no_set").string() + " --recording " +
+                  f.recording.string() + " --block 0 -o " + (f.dir / "x.html").string(),
+              f.dir);
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find((f.dir / "no_set").string()), std::string::npos) << missing.err;
 }
 
 TEST(ReportCommandTest, RejectsMissingRecording) {
