@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   gearpath::tools::AddDecoupleCommand(app, exit_code);
   gearpath::tools::AddInspectCommand(app, exit_code);
   gearpath::tools::AddReportCommand(app, exit_code);
+  gearpath::tools::AddSimCommand(app, exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

@@ -19,5 +19,6 @@ void AddReplayCommand(CLI::App& app, int& exit_code);
 void AddDecoupleCommand(CLI::App& app, int& exit_code);
 void AddInspectCommand(CLI::App& app, int& exit_code);
 void AddReportCommand(CLI::App& app, int& exit_code);
+void AddSimCommand(CLI::App& app, int& exit_code);
 
 }  // namespace gearpath::tools
