@@ -397,7 +397,8 @@ int Gearpathd::Impl::Run(const SignalEvents& signals) {
   next_watchdog = Clock::now();
   state = gearpath_RUNNING;
   std::thread loop([this] { Loop(); });
-  NotifySystemd(fmt::format("READY=1\nSTATUS=running: {} machine(s)", machine_ids.size()));
+  NotifySystemd(fmt::format("READY=1\nSTATUS=running: {} machine(s)",
+                            lifecycle_config.machines.size()));
   spdlog::info("gearpathd \"{}\" running on DDS domain {}: {} machine(s), input topic \"{}\"",
                lifecycle_config.daemon_id, lifecycle_config.domain_id,
                lifecycle_config.machines.size(), lifecycle_config.topics.accel_block);
