@@ -141,6 +141,11 @@ const Fixture& Shared() {
       c.noise_relative = 0.05;
       c.seed = faulty ? 11 : 7;
       c.include_housing_channel = false;
+      // The faulty stream continues the healthy one in time.
+      c.start_time_ns = faulty ? static_cast<std::int64_t>(kHealthyBlocks) * kBlock *
+                                     1'000'000'000 / static_cast<std::int64_t>(kFs)
+                               : 0;
+      c.first_sequence = faulty ? kHealthyBlocks : 0;
       auto sim = GearboxSimulator::Create(model.value(), train, c);
       EXPECT_TRUE(sim.ok()) << sim.error();
       AccelBlock block;
