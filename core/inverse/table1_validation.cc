@@ -91,13 +91,11 @@ Result<Table1ValidationResult> ValidateOnTable1Model(const Table1ValidationOptio
     stacked.at.push_back(h);
     Result<ForcedResponse> r = model->RespondToTransmissionError(grid(k), te);
     if (!r) return Error{r.error()};
-    // The model's FRFs follow seed Eq. 6, H = +w^2 (receptance), i.e. minus the physical
-    // accelerance, while ForcedResponse::acceleration is the physical -w^2 X: responses in the
-    // FRFs' convention are -acceleration.
+    // The model's FRFs and its forced-response accelerations are both physical (a = -w^2 X).
     for (int i = 0; i < static_cast<int>(seats); ++i) {
-      x(i, k) = -r->acceleration(model->SeatDof(i));
+      x(i, k) = r->acceleration(model->SeatDof(i));
     }
-    x(seats, k) = -r->acceleration(model->HousingDof());
+    x(seats, k) = r->acceleration(model->HousingDof());
     forces.col(k) = r->bearing_force;
   }
 

@@ -348,10 +348,11 @@ Eigen::MatrixXcd LumpedGearboxModel::Receptance(double omega) const {
 }
 
 Eigen::MatrixXcd LumpedGearboxModel::CoupledAccelerance(double omega) const {
-  // w -> 0: w^2 sum phi phi^T / (w_n^2 - w^2) -> -sum over rigid modes of phi phi^T (they are
+  // Physical accelerance a / f = -w^2 X / f (see the header on the seed's Eq. 6 sign).
+  // w -> 0: -w^2 sum phi phi^T / (w_n^2 - w^2) -> +sum over rigid modes of phi phi^T (they are
   // undamped: only mesh dampers touch the rotations and a rigid rotation does not stretch them).
-  if (omega == 0.0) return (-rigid_modes_ * rigid_modes_.transpose()).cast<Complex>();
-  return omega * omega * Receptance(omega);
+  if (omega == 0.0) return (rigid_modes_ * rigid_modes_.transpose()).cast<Complex>();
+  return -omega * omega * Receptance(omega);
 }
 
 Eigen::MatrixXcd LumpedGearboxModel::HousingAcceleranceAt(double omega) const {
@@ -361,7 +362,7 @@ Eigen::MatrixXcd LumpedGearboxModel::HousingAcceleranceAt(double omega) const {
   const Eigen::MatrixXcd z = housing_stiffness_.cast<Complex>() -
                              omega * omega * housing_mass_.cast<Complex>() +
                              Complex(0.0, omega) * housing_damping_.cast<Complex>();
-  return omega * omega * z.partialPivLu().solve(Eigen::MatrixXcd::Identity(n, n));
+  return -omega * omega * z.partialPivLu().solve(Eigen::MatrixXcd::Identity(n, n));
 }
 
 Result<Eigen::MatrixXcd> LumpedGearboxModel::Accelerance(double frequency_hz) const {

@@ -35,8 +35,10 @@
 //   J_b/rb_b^2) the equivalent mass of the two rotors along the line of action.
 //
 // Sign conventions: x positive along the line of action (the same axis for every mass),
-// accelerance H = w^2 (-w^2 M + j w C + K)^-1 (seed Eq. 6) with harmonic time dependence
-// exp(+j w t); bearing force F_i = (k_b,i + j w c_b,i)(X_rotor_i - X_seat_i) is the force the
+// harmonic time dependence exp(+j w t), accelerance H = a / f = -w^2 (-w^2 M + j w C + K)^-1.
+// The seed prints Eq. 6 without the minus sign; gearpath uses the physical accelerance so that
+// the model's FRFs, its forced-response accelerations (-w^2 X) and measured FRFs all agree, and
+// forces identified from simulated accelerations come out with their true sign. Bearing force F_i = (k_b,i + j w c_b,i)(X_rotor_i - X_seat_i) is the force the
 // bearing exerts ON seat i, positive along +x (seed Eq. 44).
 //
 // Everything fixed per model (M, C, K, the housing-alone matrices, the undamped modes) is built

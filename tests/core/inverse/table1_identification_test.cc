@@ -39,10 +39,10 @@ Table1Case BuildCase() {
     h << c.pp.at[k], mp.at[k];
     c.stacked.at.push_back(h);
     const ForcedResponse r = model.RespondToTransmissionError(grid(k), te).value();
-    // The FRFs follow seed Eq. 6, H = +w^2 (receptance) = minus the physical accelerance;
-    // ForcedResponse::acceleration is the physical -w^2 X. Responses in the FRFs' convention:
-    for (int i = 0; i < seats; ++i) c.x_pp(i, k) = -r.acceleration(model.SeatDof(i));
-    c.x_stacked.col(k) << c.x_pp.col(k), -r.acceleration(model.HousingDof());
+    // The model's FRFs and ForcedResponse::acceleration are both physical (a = -w^2 X), so the
+    // identified forces must come out with the true bearing forces' sign.
+    for (int i = 0; i < seats; ++i) c.x_pp(i, k) = r.acceleration(model.SeatDof(i));
+    c.x_stacked.col(k) << c.x_pp.col(k), r.acceleration(model.HousingDof());
     c.forces.col(k) = r.bearing_force;
   }
   return c;

@@ -172,7 +172,8 @@ TEST(LumpedGearboxModel, StaticLimitOfReceptanceIsTheInverseStiffness) {
   const Result<Eigen::MatrixXcd> h = model->Accelerance(f);
   ASSERT_TRUE(h.ok()) << h.error();
   const Eigen::MatrixXd k_inv = model->stiffness().inverse();
-  EXPECT_LT(RelativeError(*h / (w * w), k_inv.cast<Complex>()), 1e-7);
+  // Physical accelerance -w^2 X / f, so -H / w^2 is the static flexibility.
+  EXPECT_LT(RelativeError(-*h / (w * w), k_inv.cast<Complex>()), 1e-7);
   // Exactly at 0 Hz the accelerance is zero and a static load gives K^-1 f.
   EXPECT_EQ(model->Accelerance(0.0)->norm(), 0.0);
   Eigen::VectorXcd load = Eigen::VectorXcd::Zero(10);
@@ -187,7 +188,7 @@ TEST(LumpedGearboxModel, StaticLimitOfReceptanceIsTheInverseStiffness) {
 }
 
 TEST(LumpedGearboxModel, AcceleranceAtZeroHzIsTheFreeRotationLimit) {
-  // w^2 (K - w^2 M)^-1 -> -phi phi^T for the free gear-train rotation phi (phi^T M phi = 1).
+  // -w^2 (K - w^2 M)^-1 -> +phi phi^T for the free gear-train rotation phi (phi^T M phi = 1).
   const LumpedGearboxModel model = Table1Model();
   const auto& mesh = model.meshes();
   Eigen::VectorXd phi = Eigen::VectorXd::Zero(10);
@@ -195,7 +196,7 @@ TEST(LumpedGearboxModel, AcceleranceAtZeroHzIsTheFreeRotationLimit) {
   phi[3] = -mesh[0].base_radius_driver_m / mesh[0].base_radius_driven_m;
   phi[5] = -mesh[1].base_radius_driver_m * phi[3] / mesh[1].base_radius_driven_m;
   phi /= std::sqrt(phi.dot(model.mass() * phi));
-  const Eigen::MatrixXd expected = -phi * phi.transpose();
+  const Eigen::MatrixXd expected = phi * phi.transpose();
   const Result<Eigen::MatrixXcd> h0 = model.Accelerance(0.0);
   ASSERT_TRUE(h0.ok());
   EXPECT_LT(RelativeError(*h0, expected.cast<Complex>()), 1e-9);
