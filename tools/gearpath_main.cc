@@ -16,6 +16,12 @@ int main(int argc, char** argv) {
   gearpath::tools::AddInspectCommand(app, exit_code);
   gearpath::tools::AddReportCommand(app, exit_code);
   gearpath::tools::AddSimCommand(app, exit_code);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version are "errors" that exit 0; every real command-line error is bad
+    // input, exit 2, whatever code CLI11 gives it internally.
+    return app.exit(e) == 0 ? gearpath::tools::kExitOk : gearpath::tools::kExitBadInput;
+  }
   return exit_code;
 }
