@@ -209,11 +209,14 @@ void DrawTable(const std::map<std::string, MachineView>& machines, const json& s
 std::string PlainLine(const json& j) {
   const std::string topic = j["topic"];
   if (topic == "SuspectedGear") {
-    return "verdict   " + j["machine"].get<std::string>() + " block " + j["block"].dump() +
-           ": " + j["state"].get<std::string>() + " " + j["gear"].get<std::string>() +
-           " (" + j["shaft"].get<std::string>() + ", " +
+    std::string s = "verdict   " + j["machine"].get<std::string>() + " block " +
+                    j["block"].dump() + ": " + j["state"].get<std::string>();
+    if (!j["gear"].get<std::string>().empty()) {
+      s += " " + j["gear"].get<std::string>() + " (" + j["shaft"].get<std::string>() + ", " +
            Fixed(j["characteristic_hz"].get<double>(), 2) + " Hz, confidence " +
-           Fixed(j["confidence"].get<double>(), 2) + ") " + j["reason"].get<std::string>();
+           Fixed(j["confidence"].get<double>(), 2) + ")";
+    }
+    return s + " - " + j["reason"].get<std::string>();
   }
   if (topic == "DominantPath") {
     return "dominant  " + j["machine"].get<std::string>() + " block " + j["block"].dump() +

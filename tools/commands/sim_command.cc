@@ -3,8 +3,12 @@
 // kinematics (seed Table 6), the synthesis period and per-channel levels of the generated
 // blocks, and optionally writes the machine's FRF set (--write-frf-set, docs/frf_format.md) on
 // the block length's bin grid, so the daemon can diagnose the simulated machine.
-// Publishing the blocks over DDS is not this command's job.
+// With --publish it feeds a running daemon instead: the blocks go out on the DDS block topic
+// (loopback configuration), paced in real time, N times faster, or as fast as the daemon takes
+// them. --healthy-blocks N puts N healthy blocks first, so the daemon learns its healthy
+// baseline before the fault appears, as it would on a real machine.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -20,6 +24,7 @@
 #include "core/simulation/gearbox_simulator.h"
 #include "core/simulation/model_frf_set.h"
 #include "tools/commands/commands.h"
+#include "tools/common/block_publisher.h"
 
 namespace gearpath::tools {
 namespace {
@@ -34,7 +39,13 @@ struct SimOptions {
   double sample_rate = 8000.0;
   std::uint32_t block_length = 8192;
   std::uint32_t blocks = 4;
-  std::string machine_id = "sim";
+  std::uint32_t healthy_blocks = 0;      // healthy blocks before the fault starts
+  bool housing_channel = false;          // append the central housing point m1 to p1..p3
+  std::string machine_id = "table1";     // the daemon's embedded default machine
+  bool publish = false;
+  int domain_id = 0;
+  double speedup = 1.0;                  // 1 = real time; --fast sets 0 (as fast as taken)
+  bool fast = false;
   std::string frf_set_dir;
   std::string frf_decoupling = "eq22";
   bool with_coupled = false;
@@ -75,6 +86,23 @@ int RunSim(const SimOptions& o) {
   config.block_length = o.block_length;
   config.noise_relative = o.noise;
   config.seed = o.seed;
+  config.include_housing_channel = o.housing_channel;
+  config.start_time_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                             std::chrono::system_clock::now().time_since_epoch())
+                             .count();
+  // One continuous stream: healthy blocks first (when asked), then the faulty ones, with
+  // sequence numbers and t0 running on across the switch.
+  std::optional<GearboxSimulator> healthy;
+  if (o.healthy_blocks > 0 && *type != FaultType::kNone) {
+    SimulatorConfig hc = config;
+    hc.fault = {FaultType::kNone, "", 0.0};
+    Result<GearboxSimulator> h = GearboxSimulator::Create(*model, train, hc);
+    if (!h.ok()) return bad(h.error());
+    healthy.emplace(std::move(*h));
+    config.first_sequence = o.healthy_blocks;
+    config.start_time_ns += static_cast<std::int64_t>(
+        std::llround(1e9 * o.healthy_blocks * o.block_length / o.sample_rate));
+  }
   Result<GearboxSimulator> sim = GearboxSimulator::Create(*model, train, config);
   if (!sim.ok()) return bad(sim.error());
 
@@ -107,15 +135,47 @@ int RunSim(const SimOptions& o) {
   std::printf("synthesis period %zu samples (%.6g s) at %g Hz\n", sim->period_samples(),
               static_cast<double>(sim->period_samples()) / o.sample_rate, o.sample_rate);
 
+  std::optional<BlockPublisher> publisher;
+  if (o.publish) {
+    PublisherOptions po;
+    po.domain_id = o.domain_id;
+    po.speedup = o.fast ? 0.0 : o.speedup;
+    try {
+      publisher.emplace(po);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "gearpath sim: %s\n", e.what());
+      return kExitFailure;
+    }
+    std::printf("publishing %u blocks of machine '%s' on DDS domain %d (%s)%s\n", o.blocks,
+                o.machine_id.c_str(), o.domain_id,
+                o.fast ? "as fast as taken" : (std::to_string(o.speedup) + " x real time").c_str(),
+                healthy ? (", fault from block " + std::to_string(o.healthy_blocks)).c_str()
+                        : "");
+    std::fflush(stdout);
+  }
+
   AccelBlock block;
   std::vector<double> sum2(sim->channels().size(), 0.0);
   for (std::uint32_t b = 0; b < o.blocks; ++b) {
-    sim->NextBlock(block);
+    (healthy && b < o.healthy_blocks ? *healthy : *sim).NextBlock(block);
+    if (publisher) {
+      if (Status st = publisher->Publish(block.view()); !st) {
+        std::fprintf(stderr, "gearpath sim: %s\n", st.error().c_str());
+        return kExitFailure;
+      }
+    }
     for (std::size_t c = 0; c < block.channels.size(); ++c) {
       for (std::uint32_t i = 0; i < block.samples_per_channel; ++i) {
         const double v = block.samples[c * block.samples_per_channel + i];
         sum2[c] += v * v;
       }
+    }
+  }
+  if (publisher) {
+    // Reliable delivery: do not exit (and tear the writer down) before the daemon has them.
+    if (Status st = publisher->Flush(std::chrono::seconds(30)); !st) {
+      std::fprintf(stderr, "gearpath sim: %s\n", st.error().c_str());
+      return kExitFailure;
     }
   }
   if (o.blocks > 0) {
@@ -158,8 +218,8 @@ void AddSimCommand(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<SimOptions>();
   CLI::App* cmd = app.add_subcommand(
       "sim",
-      "Simulate the Table 1 gearbox (healthy or one gear fault) offline; optionally "
-      "write its FRF set");
+      "Simulate the Table 1 gearbox (healthy or one gear fault): summarise it, write its FRF "
+      "set, or publish its blocks to a running gearpathd (--publish)");
   cmd->add_option("--fault", opt->fault, "none, chipped, wear or fracture")->capture_default_str();
   cmd->add_option("--gear", opt->gear, "faulty gear: G1, G2, G3 or G4");
   cmd->add_option("--severity", opt->severity, "fault depth scale (1 = the seed's damage)")
@@ -182,6 +242,21 @@ void AddSimCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--blocks", opt->blocks, "number of blocks to generate")->capture_default_str();
   cmd->add_option("--machine-id", opt->machine_id, "machine id of the blocks")
       ->capture_default_str();
+  cmd->add_option("--healthy-blocks", opt->healthy_blocks,
+                  "healthy blocks before the fault starts (for the daemon's baseline)")
+      ->capture_default_str();
+  cmd->add_flag("--housing-channel", opt->housing_channel,
+                "also output the central housing point m1 (an Eq. 24 FRF set needs it)");
+  cmd->add_flag("--publish", opt->publish,
+                "publish the blocks on the DDS block topic (loopback configuration)");
+  cmd->add_option("--domain", opt->domain_id, "DDS domain id, with --publish")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 232));
+  cmd->add_option("--speed", opt->speedup, "with --publish: pace at N x real time")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--fast", opt->fast,
+                "with --publish: as fast as the daemon takes them (nothing is lost)");
   cmd->add_option("--write-frf-set", opt->frf_set_dir,
                   "write the machine's FRF set (on the block's bin grid) to this directory");
   cmd->add_option("--frf-decoupling", opt->frf_decoupling,
