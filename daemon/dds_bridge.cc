@@ -2,36 +2,11 @@
 
 #include <algorithm>
 
+#include "idl/dds/accel_block_wire.h"
 #include "idl/dds/sequence.h"
 
 namespace gearpath::daemon {
 namespace {
-
-SpeedSource CoreSpeedSource(gearpath_SpeedSource source) {
-  switch (source) {
-    case gearpath_SPEED_ACQUISITION_TACHOMETER:
-    case gearpath_SPEED_OTHER: return SpeedSource::kAcquisition;
-    default: return SpeedSource::kUnknown;
-  }
-}
-
-gearpath_SpeedSource WireSpeedSource(SpeedSource source) {
-  switch (source) {
-    case SpeedSource::kAcquisition: return gearpath_SPEED_ACQUISITION_TACHOMETER;
-    case SpeedSource::kConfiguration:
-    case SpeedSource::kEstimated: return gearpath_SPEED_OTHER;
-    case SpeedSource::kUnknown: break;
-  }
-  return gearpath_SPEED_UNKNOWN;
-}
-
-Axis CoreAxis(gearpath_Axis axis) {
-  switch (axis) {
-    case gearpath_AXIS_Y: return Axis::kY;
-    case gearpath_AXIS_Z: return Axis::kZ;
-    default: return Axis::kX;
-  }
-}
 
 template <typename Seq>
 std::uint32_t ResizeBounded(Seq& seq, std::size_t wanted, std::size_t bound) noexcept {
@@ -44,28 +19,6 @@ std::uint32_t ResizeBounded(Seq& seq, std::size_t wanted, std::size_t bound) noe
 }
 
 }  // namespace
-
-AccelBlockView ViewOf(const gearpath_AccelBlock& sample, std::vector<ChannelInfo>& channels) {
-  const auto wire = dds::View(sample.channels);
-  channels.resize(wire.size());
-  for (std::size_t c = 0; c < wire.size(); ++c) {
-    channels[c].sensor.assign(dds::GetString(wire[c].sensor_id));
-    channels[c].axis = CoreAxis(wire[c].axis);
-    channels[c].unit.assign(dds::GetString(wire[c].unit));
-    channels[c].sensitivity = wire[c].sensitivity_mv_per_unit;
-  }
-  AccelBlockView view;
-  view.machine_id = dds::GetString(sample.machine_id);
-  view.sequence = sample.sequence_number;
-  view.t0_ns = sample.t0_ns;
-  view.sample_rate_hz = sample.sample_rate_hz;
-  view.speed_hz = sample.speed_hz;
-  view.speed_source = CoreSpeedSource(sample.speed_source);
-  view.channels = channels;
-  view.samples_per_channel = sample.samples_per_channel;
-  view.samples = dds::View(sample.samples);
-  return view;
-}
 
 void FillDominantPath(std::string_view machine_id, const BlockResult& r,
                       gearpath_DominantPath& out) noexcept {
@@ -136,7 +89,7 @@ void FillEnvelopeIndicators(std::string_view machine_id, const BlockResult& r,
     }
   }
   out.speed_hz = r.speed_hz;
-  out.speed_source = WireSpeedSource(r.speed_source);
+  out.speed_source = dds::WireSpeedSource(r.speed_source);
 }
 
 void FillStatus(const StatusFigures& figures, std::span<const std::string> machine_ids,

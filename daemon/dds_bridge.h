@@ -1,9 +1,8 @@
 // DDS bridge: between the wire types of idl/gearpath.idl and the pipeline's core types.
 //
-// The daemon's only translation layer: an AccelBlock sample becomes an AccelBlockView over the
-// sample's own float buffer (no copy of the samples), and a BlockResult becomes the three result
-// samples. Result samples are filled in place so that their sequence buffers are reused block
-// after block. Identifiers longer than the IDL bound are truncated rather than refused (the
+// The daemon's translation of results: a BlockResult becomes the three result samples (blocks
+// come in through dds::ViewOfWireBlock, a view over the sample's own float buffer). Result
+// samples are filled in place so that their sequence buffers are reused block after block. Identifiers longer than the IDL bound are truncated rather than refused (the
 // configuration already bounds every id it defines; FRF path names come from files).
 // Mapping choices that the IDL leaves open (enumerations that differ between core and wire)
 // are documented at each function.
@@ -21,11 +20,6 @@
 #include "idl/gearpath.h"
 
 namespace gearpath::daemon {
-
-// A view of `sample`; its channel descriptions are copied into `channels` (reused: no
-// allocation once the strings have grown). Valid while `sample` and `channels` are unchanged.
-// SPEED_ACQUISITION_TACHOMETER and SPEED_OTHER both mean "supplied with the block".
-AccelBlockView ViewOf(const gearpath_AccelBlock& sample, std::vector<ChannelInfo>& channels);
 
 // Criterion: band_energy -> CRITERION_BAND_ENERGY; sideband_energy and indicator ->
 // CRITERION_OTHER (documented in docs/configuration.md).

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "daemon/dds_bridge.h"
+#include "idl/dds/accel_block_wire.h"
 #include "daemon/machine_runtime.h"
 #include "daemon/systemd_notify.h"
 #include "idl/dds/gearpath_topics.h"
@@ -259,7 +260,7 @@ void Gearpathd::Impl::HandleBlock(const gearpath_AccelBlock& sample,
   MachineRuntime& m = *it->second;
   MachineCounters& c = counters[m.id];
   ++c.received;
-  const AccelBlockView view = ViewOf(sample, channel_scratch);
+  const AccelBlockView view = dds::ViewOfWireBlock(sample, channel_scratch);
   const ProcessOutcome outcome = m.processor.Process(view, m.result);
   if (!outcome.accepted()) {
     const std::string_view reason = ToString(outcome.reason);

@@ -228,14 +228,16 @@ ParamSpec AnalysisSection() {
                       "Narrowest envelope band, Hz (0: 2 x 5 harmonics x highest shaft rate).",
                       0.0, 1e6, 0.0),
                Boolean("remove_mesh_tones",
-                       "Remove the mesh harmonics (deterministic tones) before the kurtogram.",
-                       true),
+                       "Remove the mesh harmonics (deterministic tones) before the kurtogram "
+                       "(off: removing the tones but not their healthy sidebands raised healthy "
+                       "indicators 4-10x on the simulated gearbox; docs/diagnosis.md).",
+                       false),
                Number("harmonic_tolerance",
                       "Relative tolerance on harmonic positions (speed drift).", 0.0, 0.5, 0.02)}),
        Object("baseline",
               "Verdict thresholds: learned from the machine's own first (healthy) blocks "
               "unless given.",
-              {Integer("learning_blocks", "Healthy blocks to learn the thresholds from.", 1,
+              {Integer("learning_blocks", "Healthy blocks to learn the thresholds from (a mean and a spread need two).", 2,
                        100000, 20),
                Number("k_sigma", "Learned threshold = mean + k_sigma x standard deviation.", 0.0,
                       100.0, 4.0, true),

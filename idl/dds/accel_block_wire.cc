@@ -16,18 +16,6 @@ gearpath_Axis WireAxis(Axis axis) {
   return gearpath_AXIS_X;
 }
 
-// Configuration and estimates are not something an acquisition supplies; a publisher that
-// knows the speed from elsewhere says SPEED_OTHER.
-gearpath_SpeedSource WireSpeedSource(SpeedSource source) {
-  switch (source) {
-    case SpeedSource::kAcquisition: return gearpath_SPEED_ACQUISITION_TACHOMETER;
-    case SpeedSource::kConfiguration:
-    case SpeedSource::kEstimated: return gearpath_SPEED_OTHER;
-    case SpeedSource::kUnknown: break;
-  }
-  return gearpath_SPEED_UNKNOWN;
-}
-
 Axis CoreAxis(gearpath_Axis axis) {
   switch (axis) {
     case gearpath_AXIS_Y: return Axis::kY;
@@ -45,6 +33,18 @@ SpeedSource CoreSpeedSource(gearpath_SpeedSource source) {
 }
 
 }  // namespace
+
+// Configuration and estimates are not something an acquisition supplies; a publisher that
+// knows the speed from elsewhere says SPEED_OTHER.
+gearpath_SpeedSource WireSpeedSource(SpeedSource source) noexcept {
+  switch (source) {
+    case SpeedSource::kAcquisition: return gearpath_SPEED_ACQUISITION_TACHOMETER;
+    case SpeedSource::kConfiguration:
+    case SpeedSource::kEstimated: return gearpath_SPEED_OTHER;
+    case SpeedSource::kUnknown: break;
+  }
+  return gearpath_SPEED_UNKNOWN;
+}
 
 Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noexcept {
   if (!SetString(out.machine_id, block.machine_id)) {

@@ -21,6 +21,10 @@ Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noex
 // decoded into `channels` (reused, so no allocation once it has grown). Speed sources map so
 // that FillWireBlock(ViewOfWireBlock(w)) == w field for field: TACHOMETER <-> kAcquisition,
 // OTHER <-> kConfiguration (a speed from outside the acquisition), UNKNOWN <-> kUnknown.
+// The wire speed source for a core one: TACHOMETER for kAcquisition, OTHER for a speed from
+// outside the acquisition (configuration, estimate), UNKNOWN otherwise.
+gearpath_SpeedSource WireSpeedSource(SpeedSource source) noexcept;
+
 AccelBlockView ViewOfWireBlock(const gearpath_AccelBlock& sample,
                                std::vector<ChannelInfo>& channels);
 

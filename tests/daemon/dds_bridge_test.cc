@@ -1,5 +1,6 @@
 // The DDS bridge: wire samples <-> core types, field by field (no DDS traffic needed).
 #include "daemon/dds_bridge.h"
+#include "idl/dds/accel_block_wire.h"
 
 #include <gtest/gtest.h>
 
@@ -32,7 +33,7 @@ TEST(DdsBridge, ViewOfAnAccelBlockSharesTheSampleBufferAndCopiesTheChannelNames)
   ASSERT_TRUE(dds::Assign(s->samples, std::span<const float>(values)));
 
   std::vector<ChannelInfo> channels;
-  const AccelBlockView v = ViewOf(*s, channels);
+  const AccelBlockView v = dds::ViewOfWireBlock(*s, channels);
   EXPECT_EQ(v.machine_id, "gb7");
   EXPECT_EQ(v.sequence, 42u);
   EXPECT_EQ(v.t0_ns, 123456789);
@@ -50,8 +51,8 @@ TEST(DdsBridge, AnAccelBlockWithoutSpeedSourceHasAnUnknownSpeed) {
   Owned<gearpath_AccelBlock> s;
   s->speed_source = gearpath_SPEED_UNKNOWN;
   std::vector<ChannelInfo> channels;
-  EXPECT_EQ(ViewOf(*s, channels).speed_source, SpeedSource::kUnknown);
-  EXPECT_TRUE(ViewOf(*s, channels).samples.empty());
+  EXPECT_EQ(dds::ViewOfWireBlock(*s, channels).speed_source, SpeedSource::kUnknown);
+  EXPECT_TRUE(dds::ViewOfWireBlock(*s, channels).samples.empty());
 }
 
 BlockResult ExampleResult() {
