@@ -88,4 +88,19 @@ Result<FrfSet> MakeModelFrfSet(const LumpedGearboxModel& model, const GearTrain&
   return set;
 }
 
+Result<FrfSet> MakeTable1FrfSet() {
+  Result<LumpedGearboxModel> model = LumpedGearboxModel::Create(Table1Parameters());
+  if (!model) return Error{"Table-1 lumped model: " + model.error()};
+  constexpr double kSampleRate = 8000.0;
+  constexpr Eigen::Index kBlock = 8192;
+  Eigen::VectorXd f(kBlock / 2);
+  for (Eigen::Index k = 0; k < f.size(); ++k) {
+    f[k] = static_cast<double>(k + 1) * kSampleRate / static_cast<double>(kBlock);
+  }
+  ModelFrfSetOptions options;
+  options.decoupling = ModelFrfDecoupling::kVirtualEq22;
+  options.description = "builtin:table1 - seed Table-1 lumped gearbox, virtual decoupling Eq. 22";
+  return MakeModelFrfSet(*model, GearTrain::Table1(), f, options);
+}
+
 }  // namespace gearpath

@@ -43,4 +43,10 @@ Result<FrfSet> MakeModelFrfSet(const LumpedGearboxModel& model, const GearTrain&
                                const Eigen::VectorXd& frequency_hz,
                                const ModelFrfSetOptions& options = {});
 
+// The seed's Table-1 gearbox as gearpath ships it (the daemon's `builtin:table1`): the Table-1
+// lumped model decoupled at the bearing seats by Eq. 22, channels p1..p3, paths B1x..B3x, on
+// the bins 1..4096 of an 8192-sample block at 8 kHz (0.977 Hz .. 4 kHz), so the default block
+// maps onto it exactly. No DC bin: decoupling is singular there.
+Result<FrfSet> MakeTable1FrfSet();
+
 }  // namespace gearpath

@@ -64,23 +64,6 @@ struct ReportOptions {
 // code on the same samples; only the band edges may differ by rounding).
 constexpr double kRedrawTolerance = 1e-6;
 
-// The seed's Table-1 gearbox, as the daemon's `builtin:table1`: Eq. 22 decoupled FRFs on the
-// bins 1..4096 of an 8192-sample block at 8 kHz. (tools/ must not depend on daemon/.)
-Result<FrfSet> BuiltinTable1FrfSet() {
-  auto model = LumpedGearboxModel::Create(Table1Parameters());
-  if (!model) return Error{"Table-1 lumped model: " + model.error()};
-  constexpr double kSampleRate = 8000.0;
-  constexpr Eigen::Index kBlock = 8192;
-  Eigen::VectorXd f(kBlock / 2);
-  for (Eigen::Index k = 0; k < f.size(); ++k) {
-    f[k] = static_cast<double>(k + 1) * kSampleRate / static_cast<double>(kBlock);
-  }
-  ModelFrfSetOptions options;
-  options.decoupling = ModelFrfDecoupling::kVirtualEq22;
-  options.description = "builtin:table1 - seed Table-1 lumped gearbox, virtual decoupling Eq. 22";
-  return MakeModelFrfSet(model.value(), GearTrain::Table1(), f, options);
-}
-
 Result<TrainLayout> NamedTrain(const std::string& name) {
   if (name != "table1") {
     return Error{fmt::format("unknown gear train '{}' (known: table1)", name)};
@@ -224,20 +207,6 @@ Status CheckRedraw(const ReportSes& ses, const BlockShaftIndicator& shaft, bool 
   return Status::Ok();
 }
 
-const char* StateName(FaultState s) {
-  switch (s) {
-    case FaultState::kLearning:
-      return "learning";
-    case FaultState::kNoFault:
-      return "no_fault";
-    case FaultState::kSuspected:
-      return "suspected";
-    case FaultState::kAlarm:
-      return "alarm";
-  }
-  return "unknown";
-}
-
 int Fail(int code, const std::string& message) {
   std::fprintf(stderr, "gearpath report: %s\n", message.c_str());
   return code;
@@ -255,7 +224,7 @@ int RunReport(const ReportOptions& o) {
       return Fail(kExitBadInput,
                   fmt::format("unknown built-in machine '{}' (known: table1)", o.builtin));
     }
-    auto set = BuiltinTable1FrfSet();
+    auto set = MakeTable1FrfSet();
     if (!set) return Fail(kExitFailure, set.error());
     frf = std::move(set.value());
     frf_source = "builtin:table1";
@@ -328,7 +297,7 @@ int RunReport(const ReportOptions& o) {
       p.block_index = i;
       p.sequence = result.sequence;
       p.dominant_path = std::string(result.dominant_path_name);
-      p.state = StateName(result.verdict.state);
+      p.state = ToString(result.verdict.state);
       p.gear = std::string(result.verdict.gear_name);
       for (const BlockShaftIndicator& sh : result.shafts) {
         p.raw.push_back(sh.raw);
@@ -379,7 +348,7 @@ int RunReport(const ReportOptions& o) {
     r.reconstructed_harmonics = sh.reconstructed_harmonics;
     d.shafts.push_back(std::move(r));
   }
-  d.state = StateName(result.verdict.state);
+  d.state = ToString(result.verdict.state);
   d.gear = std::string(result.verdict.gear_name);
   d.shaft = std::string(result.verdict.shaft_name);
   d.confidence = result.verdict.confidence;
