@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -108,7 +109,9 @@ struct Fixture {
   fs::path dir;
   fs::path recording;
   MachineSetup setup;
-  std::vector<BlockResult> results;  // per block, from a BlockProcessor run here
+  // The processor outlives the results: their path and shaft names are views into it.
+  std::optional<BlockProcessor> processor;
+  std::vector<BlockResult> results;  // per block, from `processor`
 };
 
 // Table-1 model, the `builtin:table1` FRF grid (bins 1..4096 of 8192 samples at 8 kHz).
@@ -169,9 +172,10 @@ const Fixture& Shared() {
     x.setup.options.baseline_blocks = kHealthyBlocks;
     auto p = BlockProcessor::Create(x.setup);
     EXPECT_TRUE(p.ok()) << p.error();
+    x.processor.emplace(std::move(p).value());
     BlockResult r;
     for (std::size_t i = 0; i < rec.block_count(); ++i) {
-      EXPECT_TRUE(p->Process(rec.block(i), r).accepted());
+      EXPECT_TRUE(x.processor->Process(rec.block(i), r).accepted());
       x.results.push_back(r);
     }
     return x;
