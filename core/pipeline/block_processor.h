@@ -164,6 +164,9 @@ struct BlockRegularisation {
   std::uint32_t bins_outside_frf = 0;  // bins with forces set to zero (outside FRF range)
 };
 
+// The names in a BlockResult (paths, bearings, shafts, dominant path) are string_views into
+// the BlockProcessor that filled it (no allocation per block): keep the processor alive as
+// long as the result is read, and copy a name to keep it longer.
 struct BlockResult {
   std::uint64_t sequence = 0;
   std::int64_t t0_ns = 0;
