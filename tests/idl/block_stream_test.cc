@@ -26,14 +26,11 @@ constexpr std::uint32_t kSamplesPerChannel = 1024;
 
 TEST(BlockStream, DeliversEveryBlockInOrderToAReaderThatStartsTakingLate) {
   testing::LoopbackPair pair;
-  Topic<gearpath_AccelBlock> pub_topic(pair.publisher);
-  Topic<gearpath_AccelBlock> sub_topic(pair.subscriber);
-  Writer<gearpath_AccelBlock> writer(pub_topic);
-  Reader<gearpath_AccelBlock> reader(sub_topic);
-  ReadCondition data(reader);
+  testing::LoopbackLink<gearpath_AccelBlock> link(pair);
+  Writer<gearpath_AccelBlock>& writer = link.writer;
+  Reader<gearpath_AccelBlock>& reader = link.reader;
+  WaitSet& waitset = link.waitset;
   GuardCondition stop(pair.subscriber);
-  WaitSet waitset(pair.subscriber);
-  waitset.Attach(data, 1);
   waitset.Attach(stop, 2);
   ASSERT_TRUE(writer.WaitForReaders(1, seconds(10)));
 

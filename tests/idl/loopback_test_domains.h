@@ -15,6 +15,8 @@
 #include <string>
 
 #include "idl/dds/gearpath_topics.h"
+#include "idl/dds/topic.h"
+#include "idl/dds/waitset.h"
 
 namespace gearpath::dds::testing {
 
@@ -44,6 +46,28 @@ struct LoopbackPair {
   Domain domain_b;
   Participant publisher;
   Participant subscriber;
+};
+
+// A writer on the publishing instance and a reader on the subscribing one, with a WaitSet that
+// wakes with token 1 when the reader has data. Members are public so tests attach more.
+template <typename T>
+struct LoopbackLink {
+  explicit LoopbackLink(const LoopbackPair& pair)
+      : pub_topic(pair.publisher),
+        sub_topic(pair.subscriber),
+        writer(pub_topic),
+        reader(sub_topic),
+        data(reader),
+        waitset(pair.subscriber) {
+    waitset.Attach(data, 1);
+  }
+
+  Topic<T> pub_topic;
+  Topic<T> sub_topic;
+  Writer<T> writer;
+  Reader<T> reader;
+  ReadCondition data;
+  WaitSet waitset;
 };
 
 }  // namespace gearpath::dds::testing

@@ -68,13 +68,10 @@ void FillBlock(gearpath_AccelBlock& block) {
 
 TEST(RoundTrip, AccelBlockWithEightChannelsOf4096SamplesArrivesBitExact) {
   testing::LoopbackPair pair;
-  Topic<gearpath_AccelBlock> pub_topic(pair.publisher);
-  Topic<gearpath_AccelBlock> sub_topic(pair.subscriber);
-  Writer<gearpath_AccelBlock> writer(pub_topic);
-  Reader<gearpath_AccelBlock> reader(sub_topic);
-  ReadCondition data(reader);
-  WaitSet waitset(pair.subscriber);
-  waitset.Attach(data, 1);
+  testing::LoopbackLink<gearpath_AccelBlock> link(pair);
+  Writer<gearpath_AccelBlock>& writer = link.writer;
+  Reader<gearpath_AccelBlock>& reader = link.reader;
+  WaitSet& waitset = link.waitset;
   ASSERT_TRUE(writer.WaitForReaders(1, seconds(10)));
 
   Owned<gearpath_AccelBlock> sent;
@@ -124,13 +121,10 @@ TEST(RoundTrip, AccelBlockWithEightChannelsOf4096SamplesArrivesBitExact) {
 // that takes into the same vector block after block stops allocating for samples.
 TEST(RoundTrip, TakingIntoTheSameSampleAgainReusesItsSampleBuffer) {
   testing::LoopbackPair pair;
-  Topic<gearpath_AccelBlock> pub_topic(pair.publisher);
-  Topic<gearpath_AccelBlock> sub_topic(pair.subscriber);
-  Writer<gearpath_AccelBlock> writer(pub_topic);
-  Reader<gearpath_AccelBlock> reader(sub_topic);
-  ReadCondition data(reader);
-  WaitSet waitset(pair.subscriber);
-  waitset.Attach(data, 1);
+  testing::LoopbackLink<gearpath_AccelBlock> link(pair);
+  Writer<gearpath_AccelBlock>& writer = link.writer;
+  Reader<gearpath_AccelBlock>& reader = link.reader;
+  WaitSet& waitset = link.waitset;
   ASSERT_TRUE(writer.WaitForReaders(1, seconds(10)));
 
   std::vector<Owned<gearpath_AccelBlock>> received(1);
