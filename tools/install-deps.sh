@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libfftw3-dev
   cyclonedds-dev cyclonedds-tools
   libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev libsystemd-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev valgrind
   python3 python3-numpy
 )
 
