@@ -1,0 +1,58 @@
+#include "core/pipeline/block_workspace.h"
+
+#include <utility>
+
+namespace gearpath {
+
+Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std::size_t n) {
+  const double fs = machine.setup.options.sample_rate_hz;
+  BlockWorkspace w;
+  w.n = n;
+  w.bins = n / 2 + 1;
+  w.bin_hz = fs / static_cast<double>(n);
+  auto map = MapFrfToBlockGrid(machine.setup.frf_set.decoupled, n, fs);
+  if (!map) return Error{map.error()};
+  w.map = std::move(map.value());
+  auto inverse = InverseSpectrum::Create(n, 1);
+  if (!inverse) return Error{inverse.error()};
+  w.inverse.emplace(std::move(inverse.value()));
+
+  const std::size_t channels = machine.channels;
+  const std::size_t paths = machine.paths;
+  const auto in_range = static_cast<Eigen::Index>(w.map.frf.bins());
+  w.time.assign(channels * n, 0.0);
+  w.spec.assign(channels * w.bins, Cd{});
+  w.meshes = machine.unit_meshes;
+  w.forces = Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(paths), in_range);
+  w.band_mask.assign(w.bins, 0);
+  for (std::size_t k = 0; k < w.bins; ++k) {
+    const double f = static_cast<double>(k) * w.bin_hz;
+    w.band_mask[k] = w.map.InRange(k) && f >= machine.band_lo && f <= machine.band_hi ? 1 : 0;
+  }
+  w.sideband_mask.assign(w.bins, 0);
+  w.mesh_mask.assign(w.bins, 0);
+  w.path_energy.assign(paths, 0.0);
+  w.path_share.assign(paths, 0.0);
+  w.path_criterion.assign(paths, 0.0);
+  w.path_force.assign(paths, 0.0);
+  w.mesh_evidence.assign(machine.unit_meshes.size(), 0.0);
+  w.best_channel.assign(paths, 0);
+  w.dominant_time.assign(channels * n, 0.0);
+  w.one_spec.assign(w.bins, Cd{});
+  w.raw_signal.assign(n, 0.0);
+  w.rec_signal.assign(n, 0.0);
+  return w;
+}
+
+void BlockWorkspace::Contribution(std::size_t path, std::size_t channel,
+                                  std::span<Cd> out) const noexcept {
+  std::fill(out.begin(), out.end(), Cd{});
+  const auto p = static_cast<Eigen::Index>(path);
+  const auto c = static_cast<Eigen::Index>(channel);
+  for (Eigen::Index i = 0; i < map.frf.bins(); ++i) {
+    out[map.first_bin + static_cast<std::size_t>(i)] =
+        map.frf.at[static_cast<std::size_t>(i)](c, p) * forces(p, i);
+  }
+}
+
+}  // namespace gearpath

@@ -1,0 +1,73 @@
+// BlockWorkspace: the buffers one block's stages share, for one block shape (samples per
+// channel). Sized once by BlockWorkspace::Create and the stages' Configure(); every buffer is
+// reused block after block, so processing allocates nothing.
+//
+// Layouts: time signals are FRF-row major (row r occupies [r n, (r + 1) n)); spectra are
+// FRF-row major over bins (n/2 + 1 per row); forces are paths x in-range bins.
+#pragma once
+
+#include <Eigen/Dense>
+#include <complex>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/common/accel_block.h"
+#include "core/diagnosis/dominant_path.h"
+#include "core/dsp/spectrum.h"
+#include "core/pipeline/frf_grid_mapping.h"
+#include "core/pipeline/machine_context.h"
+
+namespace gearpath {
+
+struct BlockWorkspace {
+  using Cd = std::complex<double>;
+
+  // --- Shape ---
+  std::size_t n = 0;     // samples per channel
+  std::size_t bins = 0;  // n/2 + 1
+  double bin_hz = 0.0;
+  FrfGridMapping map;  // the FRF set on this shape's bin grid (in-range bins only)
+
+  // --- Shared plans ---
+  std::optional<InverseSpectrum> inverse;  // one channel, any stage may use it
+
+  // --- Filled stage by stage ---
+  std::vector<double> time;  // channels x n: measured samples in FRF row order
+  std::vector<Cd> spec;      // channels x bins: their amplitude spectra
+  double speed_hz = 0.0;     // input-shaft speed of this block; 0 = unknown
+  SpeedSource speed_source = SpeedSource::kUnknown;
+  std::vector<MeshLines> meshes;  // every mesh at this block's speed
+
+  Eigen::MatrixXcd forces;  // paths x in-range bins: identified bearing forces
+
+  std::vector<std::uint8_t> band_mask;      // bins: analysis band and inside the FRF range
+  std::vector<std::uint8_t> sideband_mask;  // bins: mesh sideband lines (criterion)
+  std::vector<std::uint8_t> mesh_mask;      // bins: mesh harmonics
+
+  std::vector<double> path_energy;     // per path: analysis-band contribution energy
+  std::vector<double> path_share;      // per path: energy share
+  std::vector<double> path_criterion;  // per path: dominant-path criterion (after excess)
+  std::vector<double> path_force;      // per path: |F|^2 on the sideband lines
+  std::vector<double> mesh_evidence;   // per mesh: force-sideband excess over healthy
+  std::vector<int> best_channel;       // per path: FRF row where its contribution is largest
+
+  int dominant = -1;                 // dominant path; -1 = none
+  std::size_t indicator_channel = 0;  // FRF row of the raw / reconstructed indicator
+  std::vector<double> dominant_time;  // channels x n: the dominant path's contribution in time
+
+  std::vector<Cd> one_spec;         // bins: scratch spectrum of one signal
+  std::vector<double> raw_signal;   // n: measured signal at the indicator channel
+  std::vector<double> rec_signal;   // n: dominant path's contribution there
+
+  // Sizes every buffer for `machine` and n samples per channel, maps the FRF set onto the
+  // grid and plans the shared inverse FFT.
+  static Result<BlockWorkspace> Create(const MachineContext& machine, std::size_t n);
+
+  // Contribution spectrum of `path` at FRF row `channel`: H_cp F_p on in-range bins, 0
+  // elsewhere (seed Eq. 45). noexcept, allocation-free.
+  void Contribution(std::size_t path, std::size_t channel, std::span<Cd> out) const noexcept;
+};
+
+}  // namespace gearpath

@@ -1,0 +1,109 @@
+#include "core/pipeline/dominant_path_stage.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "core/diagnosis/dominant_path.h"
+#include "core/pipeline/block_workspace.h"
+#include "core/pipeline/machine_context.h"
+#include "core/pipeline/machine_state.h"
+
+namespace gearpath {
+
+Status DominantPathStage::Configure(const MachineContext& machine, BlockWorkspace& work) {
+  if (machine.setup.options.criterion == AnalysisOptions::DominantCriterion::kIndicator) {
+    auto e = EnvelopeAnalysis::Create(machine, work.n);
+    if (!e) return Error{e.error()};
+    envelope_.emplace(std::move(e.value()));
+    signal_.assign(work.n, 0.0);
+    indicator_.assign(machine.shaft_ratio.size(), 0.0);
+    harmonics_.assign(machine.shaft_ratio.size(), {});
+  }
+  return Status::Ok();
+}
+
+// Each path's own fault indicator (max over shafts) at its best channel.
+void DominantPathStage::IndicatorCriterion(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  BlockEnvelopeBand scratch;
+  for (std::size_t p = 0; p < ctx.machine.paths; ++p) {
+    w.Contribution(p, static_cast<std::size_t>(w.best_channel[p]), w.one_spec);
+    (void)w.inverse->Process(w.one_spec, signal_);
+    envelope_->Process(signal_, w.speed_hz, scratch, indicator_, harmonics_);
+    w.path_criterion[p] = *std::max_element(indicator_.begin(), indicator_.end());
+  }
+}
+
+RejectReason DominantPathStage::Process(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  MachineState& st = ctx.state;
+  const MachineContext& m = ctx.machine;
+  const AnalysisOptions& o = m.setup.options;
+  const bool have_speed = w.speed_hz > 0.0;
+  if (envelope_ && have_speed) IndicatorCriterion(ctx);
+
+  // Excess over the healthy level (see AnalysisOptions::criterion_over_baseline).
+  if (o.criterion_over_baseline && st.learning && have_speed) {
+    st.criterion_healthy.Add(w.path_criterion);
+  } else if (o.criterion_over_baseline && st.criterion_healthy.blocks > 0) {
+    bool any = false;
+    for (std::size_t p = 0; p < m.paths; ++p) {
+      any = any || w.path_criterion[p] > st.criterion_healthy.mean[p];
+    }
+    if (any) {
+      for (std::size_t p = 0; p < m.paths; ++p) {
+        w.path_criterion[p] = std::max(0.0, w.path_criterion[p] - st.criterion_healthy.mean[p]);
+      }
+    }
+  }
+  // Mesh evidence: the bearing FORCES' energy on the sideband lines in excess of healthy, split
+  // over the meshes each path sees. Forces locate the source; contributions also weigh the
+  // housing's transfer, which favours whichever seat is most mobile.
+  if (st.learning && have_speed) st.path_force_healthy.Add(w.path_force);
+  std::fill(w.mesh_evidence.begin(), w.mesh_evidence.end(), 0.0);
+  if (!st.learning && st.path_force_healthy.blocks > 0) {
+    for (std::size_t p = 0; p < m.paths; ++p) {
+      const auto& seen = m.topology.path_meshes[p];
+      if (seen.empty()) continue;
+      const double excess = std::max(0.0, w.path_force[p] - st.path_force_healthy.mean[p]);
+      for (int mesh : seen) {
+        w.mesh_evidence[static_cast<std::size_t>(mesh)] +=
+            excess / static_cast<double>(seen.size());
+      }
+    }
+  }
+
+  const int dominant = SelectDominantPath(w.path_criterion);
+  w.dominant = dominant;
+  BlockResult& out = ctx.out;
+  out.dominant_path = dominant;
+  out.dominant_path_name =
+      dominant >= 0 ? std::string_view(m.setup.frf_set.paths[static_cast<std::size_t>(dominant)].name)
+                    : std::string_view{};
+  for (std::size_t p = 0; p < m.paths; ++p) {
+    out.paths[p].name = m.setup.frf_set.paths[p].name;
+    out.paths[p].bearing = m.setup.frf_set.paths[p].bearing;
+    out.paths[p].energy = w.path_energy[p];
+    out.paths[p].share = w.path_share[p];
+    out.paths[p].criterion = w.path_criterion[p];
+  }
+
+  // The dominant path's contribution in time, at every channel (kept for the accessor).
+  if (dominant >= 0) {
+    for (std::size_t c = 0; c < m.channels; ++c) {
+      w.Contribution(static_cast<std::size_t>(dominant), c, w.one_spec);
+      (void)w.inverse->Process(w.one_spec,
+                               std::span<double>(w.dominant_time).subspan(c * w.n, w.n));
+    }
+  } else {
+    std::fill(w.dominant_time.begin(), w.dominant_time.end(), 0.0);
+  }
+  w.indicator_channel =
+      dominant >= 0
+          ? static_cast<std::size_t>(w.best_channel[static_cast<std::size_t>(dominant)])
+          : (o.indicator_channel >= 0 ? static_cast<std::size_t>(o.indicator_channel) : 0);
+  out.indicator_channel = static_cast<int>(w.indicator_channel);
+  return RejectReason::kNone;
+}
+
+}  // namespace gearpath

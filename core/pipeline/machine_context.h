@@ -1,0 +1,52 @@
+// MachineContext: everything about one machine that is fixed once its setup is validated (the
+// FRF set, the channel mapping, the gear train's kinematics and the verdict's topology, the
+// analysis band, the block expectations). Built once by BlockProcessor::Create; read-only for
+// every stage afterwards, so one instance can serve every block shape of the machine.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/common/result.h"
+#include "core/diagnosis/dominant_path.h"
+#include "core/diagnosis/gear_verdict.h"
+#include "core/pipeline/block_processor.h"
+#include "core/pipeline/block_validation.h"
+
+namespace gearpath {
+
+// Shafts turning at the same rate (within the harmonic tolerance) form one rate group: their
+// synchronous averages are identical, so every rate-based indicator is computed once per group.
+struct RateGroup {
+  double ratio = 0.0;             // group rate / input-shaft rate
+  std::vector<int> shafts;        // TrainLayout shaft indices
+  std::vector<int> gears;         // gears keyed on those shafts
+  std::vector<int> gear_teeth;    // their tooth counts = their mesh orders on this group's TSA
+  std::vector<int> gear_meshes;   // their mesh indices (-1: in no mesh)
+};
+
+struct MachineContext {
+  MachineSetup setup;  // options normalised (speed search range filled in)
+  BlockExpectations expect;
+  std::vector<int> block_to_row;  // block channel -> FRF row
+  std::size_t channels = 0;       // FRF rows
+  std::size_t paths = 0;          // FRF columns
+
+  std::vector<double> shaft_ratio;     // per shaft: rate / input rate
+  double max_ratio = 1.0;              // highest shaft ratio
+  std::vector<MeshLines> unit_meshes;  // at 1 Hz input speed
+  std::vector<double> mesh_orders;     // mesh frequency / input rate, per mesh
+  std::vector<RateGroup> rate_groups;  // in order of first shaft
+  std::vector<int> shaft_group;        // per shaft: its rate group
+  VerdictTopology topology;
+
+  double band_lo = 0.0;       // analysis band, Hz
+  double band_hi = 0.0;
+  double max_speed_hz = 0.0;  // upper bound on the input speed (bandwidth, search range)
+
+  // Validates `setup` and derives everything above. Errors name the offending field.
+  static Result<MachineContext> Create(MachineSetup setup);
+};
+
+}  // namespace gearpath

@@ -1,0 +1,39 @@
+// MachineState: what one machine has learned and must remember from block to block, whatever
+// the block shape: the sequence tracker, the healthy baselines, the dominant-path criterion's
+// healthy levels. Owned by the BlockProcessor, shared by the stages of every shape.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/diagnosis/healthy_baseline.h"
+#include "core/pipeline/block_validation.h"
+
+namespace gearpath {
+
+// Running mean of a per-path figure over the healthy (baseline) blocks.
+struct HealthyMean {
+  std::vector<double> mean;
+  int blocks = 0;
+
+  void Add(std::span<const double> values) noexcept {
+    ++blocks;
+    for (std::size_t i = 0; i < mean.size() && i < values.size(); ++i) {
+      mean[i] += (values[i] - mean[i]) / blocks;
+    }
+  }
+  void Reset() noexcept {
+    blocks = 0;
+    for (double& m : mean) m = 0.0;
+  }
+};
+
+struct MachineState {
+  SequenceTracker tracker;
+  std::optional<HealthyBaseline> envelope_baseline;  // raw (shafts) then reconstructed (shafts)
+  HealthyMean criterion_healthy;                     // per path: dominant-path criterion
+  HealthyMean path_force_healthy;                    // per path: force on the sideband lines
+  bool learning = true;                              // the envelope baseline is incomplete
+};
+
+}  // namespace gearpath

@@ -1,0 +1,64 @@
+#include "core/pipeline/path_energy_stage.h"
+
+#include <algorithm>
+#include <complex>
+
+#include "core/diagnosis/dominant_path.h"
+#include "core/pipeline/block_workspace.h"
+#include "core/pipeline/machine_context.h"
+
+namespace gearpath {
+
+Status PathEnergyStage::Configure(const MachineContext&, BlockWorkspace&) { return Status::Ok(); }
+
+RejectReason PathEnergyStage::Process(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  const MachineContext& m = ctx.machine;
+  const AnalysisOptions& o = m.setup.options;
+  if (w.speed_hz > 0.0) {
+    BuildSidebandMask(w.bin_hz, w.meshes, o.sideband_orders, m.band_lo, m.band_hi, 1.0,
+                      w.sideband_mask);
+    BuildMeshHarmonicMask(w.bin_hz, w.meshes, 1.0, w.mesh_mask);
+  } else {
+    std::fill(w.sideband_mask.begin(), w.sideband_mask.end(), std::uint8_t{0});
+    std::fill(w.mesh_mask.begin(), w.mesh_mask.end(), std::uint8_t{0});
+  }
+  const Eigen::Index in_range = w.map.frf.bins();
+  for (std::size_t p = 0; p < m.paths; ++p) {
+    const auto pi = static_cast<Eigen::Index>(p);
+    double band = 0.0;
+    double side = 0.0;
+    double force = 0.0;
+    double best_e = -1.0;
+    int best = 0;
+    for (std::size_t c = 0; c < m.channels; ++c) {
+      const auto ci = static_cast<Eigen::Index>(c);
+      double channel_energy = 0.0;
+      for (Eigen::Index i = 0; i < in_range; ++i) {
+        const std::size_t k = w.map.first_bin + static_cast<std::size_t>(i);
+        if (!w.band_mask[k]) continue;
+        const std::complex<double> f = w.forces(pi, i);
+        const double e = std::norm(w.map.frf.at[static_cast<std::size_t>(i)](ci, pi) * f);
+        channel_energy += e;
+        if (w.sideband_mask[k]) {
+          side += e;
+          if (c == 0) force += std::norm(f);
+        }
+      }
+      band += channel_energy;
+      if (channel_energy > best_e) {
+        best_e = channel_energy;
+        best = static_cast<int>(c);
+      }
+    }
+    w.path_force[p] = force;
+    w.path_energy[p] = band;
+    w.path_criterion[p] =
+        o.criterion == AnalysisOptions::DominantCriterion::kBandEnergy ? band : side;
+    w.best_channel[p] = o.indicator_channel >= 0 ? o.indicator_channel : best;
+  }
+  EnergyShares(w.path_energy, w.path_share);
+  return RejectReason::kNone;
+}
+
+}  // namespace gearpath
