@@ -1,0 +1,168 @@
+#include "core/dsp/synchronous_average.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "core/dsp/input_checks.h"
+
+namespace gearpath {
+namespace {
+
+constexpr const char* kStage = "synchronous average";
+constexpr std::size_t kMinPoints = 4;
+constexpr std::size_t kMaxPoints = std::size_t{1} << 20;
+
+// Index of the plan of `points` (a power of two >= kMinPoints) in the plan vectors.
+std::size_t PlanIndex(std::size_t points) noexcept {
+  return static_cast<std::size_t>(std::countr_zero(points) - std::countr_zero(kMinPoints));
+}
+
+// 4-point cubic Lagrange interpolation of x at the (fractional) sample position u, 0 <= u <=
+// n - 1. The stencil is the four samples around u, moved inwards at the block ends.
+double InterpolateCubic(const double* x, std::size_t n, double u) noexcept {
+  const auto i = static_cast<std::size_t>(u);  // floor, u >= 0
+  std::size_t first = i == 0 ? 0 : i - 1;
+  if (first + 3 >= n) first = n - 4;
+  const double t = u - static_cast<double>(first);  // position in stencil units, 0..3
+  const double a = t - 1.0;
+  const double b = t - 2.0;
+  const double c = t - 3.0;
+  const double w0 = -a * b * c / 6.0;
+  const double w1 = t * b * c / 2.0;
+  const double w2 = -t * a * c / 2.0;
+  const double w3 = t * a * b / 6.0;
+  const double* s = x + first;
+  return w0 * s[0] + w1 * s[1] + w2 * s[2] + w3 * s[3];
+}
+
+}  // namespace
+
+Result<SynchronousAverage> SynchronousAverage::Create(std::size_t block_length,
+                                                      double sample_rate_hz,
+                                                      std::size_t max_points_per_revolution) {
+  const std::string what = std::string(kStage) + ": ";
+  if (block_length < 4) {
+    return Error{what + "block length " + std::to_string(block_length) +
+                 " is too short (need at least 4 samples for the cubic interpolator)"};
+  }
+  if (!std::isfinite(sample_rate_hz) || sample_rate_hz <= 0.0) {
+    return Error{what + "sample rate " + std::to_string(sample_rate_hz) +
+                 " Hz must be finite and positive"};
+  }
+  if (max_points_per_revolution < kMinPoints || max_points_per_revolution > kMaxPoints ||
+      !std::has_single_bit(max_points_per_revolution)) {
+    return Error{what + "max points per revolution " + std::to_string(max_points_per_revolution) +
+                 " must be a power of two between " + std::to_string(kMinPoints) + " and " +
+                 std::to_string(kMaxPoints)};
+  }
+  SynchronousAverage stage;
+  stage.block_length_ = block_length;
+  stage.sample_rate_hz_ = sample_rate_hz;
+  stage.max_points_ = max_points_per_revolution;
+  for (std::size_t m = kMinPoints; m <= max_points_per_revolution; m *= 2) {
+    Result<FftPlan> forward = FftPlan::Create(FftKind::kRealToComplex, m);
+    if (!forward) return Error{what + forward.error()};
+    Result<FftPlan> inverse = FftPlan::Create(FftKind::kComplexToReal, m);
+    if (!inverse) return Error{what + inverse.error()};
+    stage.forward_.push_back(std::move(forward).value());
+    stage.inverse_.push_back(std::move(inverse).value());
+  }
+  return stage;
+}
+
+std::size_t SynchronousAverage::PointsPerRevolution(double shaft_hz) const noexcept {
+  if (!std::isfinite(shaft_hz) || shaft_hz <= 0.0) return 0;
+  const double samples_per_revolution = sample_rate_hz_ / shaft_hz;
+  if (samples_per_revolution >= static_cast<double>(max_points_)) return max_points_;
+  const auto at_least = static_cast<std::size_t>(std::ceil(samples_per_revolution));
+  return std::max(kMinPoints, std::bit_ceil(at_least));
+}
+
+SynchronousAverageRecord SynchronousAverage::MakeRecord() const {
+  SynchronousAverageRecord record;
+  record.tsa_storage.assign(max_points_, 0.0);
+  record.order_storage.assign(max_points_ / 2 + 1, 0.0);
+  return record;
+}
+
+Status SynchronousAverage::Process(std::span<const double> signal, double shaft_hz,
+                                   SynchronousAverageRecord& out) noexcept {
+  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
+  if (!std::isfinite(shaft_hz) || shaft_hz <= 0.0) {
+    return Error{std::string(kStage) + ": shaft_hz " + std::to_string(shaft_hz) +
+                 " must be finite and positive"};
+  }
+  if (out.tsa_storage.size() < max_points_ || out.order_storage.size() < max_points_ / 2 + 1) {
+    return Error{std::string(kStage) +
+                 ": output record was not made by this stage's MakeRecord() (storage for " +
+                 std::to_string(out.tsa_storage.size()) + " points, need " +
+                 std::to_string(max_points_) + ")"};
+  }
+  const double fs = sample_rate_hz_;
+  const double samples_per_revolution = fs / shaft_hz;
+  // The last point read lies below R fs / f <= N - 1, inside the block.
+  const double whole = std::floor(static_cast<double>(block_length_ - 1) / samples_per_revolution);
+  if (whole < 1.0) {
+    return Error{std::string(kStage) + ": shaft_hz " + std::to_string(shaft_hz) +
+                 " gives less than one whole revolution in the block (" +
+                 std::to_string(samples_per_revolution) + " samples per revolution, block of " +
+                 std::to_string(block_length_) + ")"};
+  }
+  if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) return s;
+
+  const auto revolutions = static_cast<std::size_t>(whole);
+  const std::size_t m_points = PointsPerRevolution(shaft_hz);
+  const std::size_t half = m_points / 2;
+  FftPlan& forward = forward_[PlanIndex(m_points)];
+  FftPlan& inverse = inverse_[PlanIndex(m_points)];
+
+  // Angular resampling and averaging, accumulated in the forward plan's input.
+  std::span<double> average = forward.real_in();
+  std::fill(average.begin(), average.end(), 0.0);
+  const double step = samples_per_revolution / static_cast<double>(m_points);
+  const double* x = signal.data();
+  std::size_t p = 0;
+  for (std::size_t r = 0; r < revolutions; ++r) {
+    for (std::size_t m = 0; m < m_points; ++m, ++p) {
+      average[m] += InterpolateCubic(x, block_length_, static_cast<double>(p) * step);
+    }
+  }
+  const double inv_r = 1.0 / static_cast<double>(revolutions);
+  for (double& v : average) v *= inv_r;
+  std::copy(average.begin(), average.end(), out.tsa_storage.begin());
+
+  // Order spectrum, amplitude-scaled as in spectrum.h.
+  forward.Execute();
+  const std::span<const std::complex<double>> bins = forward.complex_out();
+  const double interior = 2.0 / static_cast<double>(m_points);
+  const double edge = 1.0 / static_cast<double>(m_points);
+  std::span<std::complex<double>> orders(out.order_storage.data(), half + 1);
+  for (std::size_t k = 0; k <= half; ++k) orders[k] = bins[k] * interior;
+  orders[0] = bins[0].real() * edge;
+  orders[half] = bins[half].real() * edge;
+
+  // Orders above the Nyquist order hold interpolation images only: zero them, rebuild the TSA.
+  const double nyquist_order = 0.5 * samples_per_revolution;
+  if (nyquist_order < static_cast<double>(half)) {
+    const auto top = static_cast<std::size_t>(std::floor(nyquist_order));
+    for (std::size_t k = top + 1; k <= half; ++k) orders[k] = 0.0;
+    std::span<std::complex<double>> in = inverse.complex_in();
+    for (std::size_t k = 0; k <= half; ++k) in[k] = 0.5 * orders[k];
+    in[0] = orders[0].real();
+    in[half] = orders[half].real();
+    inverse.Execute();
+    const std::span<const double> rebuilt = inverse.real_out();
+    std::copy(rebuilt.begin(), rebuilt.end(), out.tsa_storage.begin());
+  }
+
+  out.points_per_revolution = m_points;
+  out.revolutions = revolutions;
+  out.shaft_hz = shaft_hz;
+  out.nyquist_order = nyquist_order;
+  return Status::Ok();
+}
+
+}  // namespace gearpath
