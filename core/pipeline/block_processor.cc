@@ -8,17 +8,20 @@
 #include <utility>
 #include <vector>
 
+#include "core/pipeline/alarm_stage.h"
 #include "core/pipeline/block_workspace.h"
+#include "core/pipeline/condition_indicator_stage.h"
 #include "core/pipeline/dominant_path_stage.h"
 #include "core/pipeline/envelope_stage.h"
 #include "core/pipeline/identification_stage.h"
+#include "core/pipeline/indicator_scoring_stage.h"
+#include "core/pipeline/localisation_stage.h"
 #include "core/pipeline/machine_context.h"
 #include "core/pipeline/machine_state.h"
 #include "core/pipeline/path_energy_stage.h"
 #include "core/pipeline/pipeline_stage.h"
 #include "core/pipeline/spectra_stage.h"
 #include "core/pipeline/speed_stage.h"
-#include "core/pipeline/verdict_stage.h"
 
 namespace gearpath {
 namespace {
@@ -32,7 +35,10 @@ std::vector<std::unique_ptr<PipelineStage>> MakeStages() {
   stages.push_back(std::make_unique<PathEnergyStage>());
   stages.push_back(std::make_unique<DominantPathStage>());
   stages.push_back(std::make_unique<EnvelopeStage>());
-  stages.push_back(std::make_unique<VerdictStage>());
+  stages.push_back(std::make_unique<ConditionIndicatorStage>());
+  stages.push_back(std::make_unique<IndicatorScoringStage>());
+  stages.push_back(std::make_unique<LocalisationStage>());
+  stages.push_back(std::make_unique<AlarmStage>());
   return stages;
 }
 
@@ -62,7 +68,57 @@ Result<HealthyBaseline> MakeEnvelopeBaseline(const MachineContext& m) {
   return b;
 }
 
+// What the machine learns: the indicator baseline and its z limit, the alarm model, the
+// per-path healthy levels.
+Status InitialiseState(const MachineContext& m, MachineState& st) {
+  const AnalysisOptions& o = m.setup.options;
+  const std::string at = "machine '" + m.setup.machine_id + "': ";
+  auto envelope = MakeEnvelopeBaseline(m);
+  if (!envelope) return Error{envelope.error()};
+  st.envelope_baseline.emplace(std::move(envelope.value()));
+  RobustBaselineOptions bo;
+  bo.blocks = o.baseline_blocks;
+  bo.relative_floor = o.scale_floor;
+  bo.log_transform.assign(m.indicator_count, true);  // every indicator is a positive ratio
+  auto baseline = RobustBaseline::Create(m.indicator_count, bo);
+  if (!baseline) return Error{at + "options.baseline: " + baseline.error()};
+  st.indicator_baseline.emplace(std::move(baseline.value()));
+  st.limit_z = RobustBaseline::ZForFalseAlarmRate(
+      o.false_alarm_rate, static_cast<int>(m.indicator_count), o.baseline_blocks);
+  if (!(st.limit_z > 0.0)) {
+    return Error{at + fmt::format("options.false_alarm_rate {} gives no z limit (needs 0 < rate "
+                                  "< 1 and baseline_blocks >= 3)",
+                                  o.false_alarm_rate)};
+  }
+  AlarmOptions ao;
+  ao.n = o.alarm_window;
+  ao.suspect_k = o.suspect_k;
+  ao.alarm_k = o.alarm_k;
+  ao.clear_level = o.clear_level;
+  ao.clear_blocks = o.clear_blocks;
+  auto alarm = AlarmModel::Create(ao);
+  if (!alarm) return Error{at + "options alarm model: " + alarm.error()};
+  st.alarm.emplace(std::move(alarm.value()));
+  st.learning = true;
+  st.residual_variance_healthy.mean.assign(m.condition_slots.size(), 0.0);
+  st.criterion_healthy.mean.assign(m.paths, 0.0);
+  st.path_force_healthy.mean.assign(m.paths, 0.0);
+  return Status::Ok();
+}
+
 }  // namespace
+
+std::string_view ToString(ConditionSource source) noexcept {
+  switch (source) {
+    case ConditionSource::kMeasured:
+      return "measured";
+    case ConditionSource::kContribution:
+      return "contribution";
+    case ConditionSource::kForce:
+      return "force";
+  }
+  return "unknown";
+}
 
 // One block shape: its shared buffers and its configured stages.
 struct Shape {
@@ -113,11 +169,12 @@ Status BlockProcessor::Impl::Configure(std::size_t n) {
 
 void BlockProcessor::Impl::ResetLearning() noexcept {
   state.envelope_baseline->Reset();
-  state.learning = !state.envelope_baseline->learned();
-  if (state.learning) {
-    state.criterion_healthy.Reset();
-    state.path_force_healthy.Reset();
-  }
+  state.indicator_baseline->Reset();
+  state.alarm->Reset();
+  state.learning = true;
+  state.residual_variance_healthy.Reset();
+  state.criterion_healthy.Reset();
+  state.path_force_healthy.Reset();
 }
 
 BlockProcessor::BlockProcessor(std::unique_ptr<Impl> impl) noexcept : impl_(std::move(impl)) {}
@@ -130,12 +187,7 @@ Result<BlockProcessor> BlockProcessor::Create(MachineSetup setup) {
   if (!machine) return Error{machine.error()};
   auto impl = std::make_unique<Impl>();
   impl->machine = std::move(machine.value());
-  auto baseline = MakeEnvelopeBaseline(impl->machine);
-  if (!baseline) return Error{baseline.error()};
-  impl->state.envelope_baseline.emplace(std::move(baseline.value()));
-  impl->state.learning = !impl->state.envelope_baseline->learned();
-  impl->state.criterion_healthy.mean.assign(impl->machine.paths, 0.0);
-  impl->state.path_force_healthy.mean.assign(impl->machine.paths, 0.0);
+  if (Status st = InitialiseState(impl->machine, impl->state); !st) return Error{st.error()};
   impl->shapes.reserve(kMaxShapes);
   return BlockProcessor(std::move(impl));
 }
@@ -240,10 +292,16 @@ bool BlockProcessor::PathSignal(std::size_t path, std::size_t channel,
 }
 
 int BlockProcessor::baseline_blocks_learned() const noexcept {
-  return impl_->state.envelope_baseline->blocks_seen();
+  return impl_->state.indicator_baseline->blocks_seen();
 }
 int BlockProcessor::baseline_blocks_needed() const noexcept {
-  return impl_->state.envelope_baseline->blocks_needed();
+  return impl_->state.indicator_baseline->blocks_needed();
+}
+std::span<const std::string> BlockProcessor::ConditionIndicatorNames(
+    std::size_t group) const noexcept {
+  const auto& groups = impl_->machine.rate_groups;
+  return group < groups.size() ? std::span<const std::string>(groups[group].indicator_names)
+                               : std::span<const std::string>{};
 }
 void BlockProcessor::ResetBaseline() noexcept { impl_->ResetLearning(); }
 const MachineSetup& BlockProcessor::setup() const noexcept { return impl_->machine.setup; }

@@ -113,6 +113,25 @@ struct AnalysisOptions {
   int baseline_blocks = 20;       // healthy blocks to learn from (when thresholds are empty)
   double baseline_k_sigma = 4.0;  // threshold = mean + k * sigma over the baseline blocks
   double alarm_factor = 2.0;      // Alarm when indicator > alarm_factor * threshold
+
+  // --- Condition indicators and their healthy baseline (docs/diagnosis.md) ---
+  // Target rate of healthy blocks in which ANY indicator exceeds its limit; the limit in
+  // robust z units follows from it, the number of indicators and baseline_blocks
+  // (RobustBaseline::ZForFalseAlarmRate). The alarm model's persistence lowers the rate of
+  // flagged blocks well below it.
+  double false_alarm_rate = 0.01;
+  double scale_floor = 0.05;  // relative floor of every indicator's healthy scale (5 %)
+  // Persistence (k of the last n blocks), hysteresis and clear delay (core/diagnosis/
+  // alarm_model.h): suspected after suspect_k exceedances, alarm after alarm_k, cleared after
+  // clear_blocks blocks under clear_level x the limit.
+  int alarm_window = 5;
+  int suspect_k = 2;
+  int alarm_k = 3;
+  double clear_level = 0.7;
+  int clear_blocks = 3;
+  // Mesh decision: the best mesh's evidence must exceed the next one's by this factor, else
+  // both meshes' gears are reported as candidates.
+  double mesh_separation = 1.5;
 };
 
 struct MachineSetup {
@@ -155,6 +174,42 @@ struct BlockShaftIndicator {
   std::array<double, kIndicatorHarmonics> reconstructed_harmonics{};
 };
 
+// Where a condition-indicator signal comes from.
+enum class ConditionSource : std::uint8_t {
+  kMeasured,      // a measured channel (FRF row)
+  kContribution,  // one path's contribution at its indicator channel
+  kForce,         // one path's identified bearing force
+};
+std::string_view ToString(ConditionSource source) noexcept;
+
+// Condition indicators of one signal at one shaft rate (core/diagnosis/
+// gear_condition_indicators.h), judged against the machine's healthy baseline.
+struct BlockConditionIndicators {
+  ConditionSource source = ConditionSource::kMeasured;
+  int index = -1;                  // FRF row (measured) or path (contribution, force)
+  std::string_view signal;         // channel "A1/x" or path name
+  std::string_view shaft;          // first shaft of the rate group
+  double shaft_hz = 0.0;           // the rate the synchronous average was taken at
+  int revolutions = 0;             // revolutions averaged (0: not computed this block)
+  std::span<const double> value;   // indicator values (names: ConditionIndicatorNames())
+  std::span<const double> z;       // robust z-score of each against the baseline (0 learning)
+  double score = 0.0;              // largest directional z / limit over this set
+};
+
+// The block's anomaly score and the limits it was judged by.
+struct BlockScore {
+  double limit_z = 0.0;        // z limit in force (0 while learning)
+  double clear_level = 0.0;    // hysteresis level, in units of the limit
+  double score = 0.0;          // this block's largest indicator z / limit_z
+  std::string_view indicator;  // which indicator gave it
+  std::string_view signal;     // on which signal
+  std::string_view shaft;      // at which shaft rate
+  int exceed_count = 0;        // exceedances in the alarm window (after this block)
+  int window = 0;              // alarm window length, blocks
+  int baseline_blocks_learned = 0;
+  int baseline_blocks_needed = 0;
+};
+
 struct BlockRegularisation {
   double alpha_median = 0.0;      // regularisation parameter over in-range bins
   double condition_median = 0.0;  // condition number of the inverted operator per bin
@@ -188,6 +243,10 @@ struct BlockResult {
   BlockEnvelopeBand raw_band;               // kurtogram band of the raw signal
   BlockEnvelopeBand reconstructed_band;     // kurtogram band of the dominant-path signal
   std::vector<BlockShaftIndicator> shafts;  // TrainLayout order
+
+  // Condition indicators: every (signal, rate group), signal-major; and the block's score.
+  std::vector<BlockConditionIndicators> condition;
+  BlockScore score;
 
   GearVerdict verdict;
   BlockRegularisation regularisation;
@@ -233,6 +292,10 @@ class BlockProcessor {
   int baseline_blocks_needed() const noexcept;
   // Forget the learned baseline (e.g. after maintenance) and learn again.
   void ResetBaseline() noexcept;
+
+  // Names of the entries of BlockConditionIndicators::value of rate group `group` (the
+  // indicators, then the group's per-mesh sideband energies, then the exclusive residual).
+  std::span<const std::string> ConditionIndicatorNames(std::size_t group) const noexcept;
 
   const MachineSetup& setup() const noexcept;
   const BlockExpectations& expectations() const noexcept;

@@ -38,6 +38,15 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   w.mesh_evidence.assign(machine.unit_meshes.size(), 0.0);
   w.best_channel.assign(paths, 0);
   w.dominant_time.assign(channels * n, 0.0);
+  w.indicators.assign(machine.indicator_count, 0.0);
+  w.z.assign(machine.indicator_count, 0.0);
+  const std::size_t slots = machine.condition_slots.size();
+  w.slot_valid.assign(slots, 0);
+  w.slot_shaft_hz.assign(slots, 0.0);
+  w.slot_revolutions.assign(slots, 0);
+  w.slot_residual_variance.assign(slots, 0.0);
+  w.slot_score.assign(slots, 0.0);
+  w.group_score.assign(machine.rate_groups.size(), 0.0);
   w.one_spec.assign(w.bins, Cd{});
   w.raw_signal.assign(n, 0.0);
   w.rec_signal.assign(n, 0.0);

@@ -57,6 +57,26 @@ struct BlockWorkspace {
   std::size_t indicator_channel = 0;  // FRF row of the raw / reconstructed indicator
   std::vector<double> dominant_time;  // channels x n: the dominant path's contribution in time
 
+  // Condition indicators (machine.condition_slots layout, then the envelope indicators).
+  std::vector<double> indicators;          // machine.indicator_count values
+  std::vector<double> z;                   // their robust z-scores (0 while learning)
+  std::vector<std::uint8_t> slot_valid;    // per slot: computed this block
+  std::vector<double> slot_shaft_hz;       // per slot: the rate averaged at
+  std::vector<int> slot_revolutions;       // per slot: revolutions averaged
+  std::vector<double> slot_residual_variance;  // per slot: for NA4's healthy reference
+  std::vector<double> slot_score;          // per slot: largest directional z / limit
+  std::vector<double> group_score;         // per rate group: largest slot score
+
+  // Localisation of this block (LocalisationStage), read by the alarm stage.
+  struct Localisation {
+    int group = -1;                 // rate group whose indicators carry the anomaly
+    std::uint32_t gear_mask = 0;    // candidate gears (bit g = gear g); 0 = none
+    int mesh = -1;                  // the one mesh chosen; -1 = none or several
+    double mesh_evidence = 0.0;     // chosen mesh's evidence (z / limit)
+    double other_evidence = 0.0;    // best other mesh's evidence (z / limit)
+    int mesh_count = 0;             // meshes the group's gears sit on
+  } localisation;
+
   std::vector<Cd> one_spec;         // bins: scratch spectrum of one signal
   std::vector<double> raw_signal;   // n: measured signal at the indicator channel
   std::vector<double> rec_signal;   // n: dominant path's contribution there

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "core/diagnosis/gear_condition_indicators.h"
 #include "core/inverse/identification_operator.h"
 
 namespace gearpath {
@@ -57,6 +58,17 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
     return Error{at + "options.harmonic_tolerance must be in [0, 0.2]"};
   }
   if (!(o.alarm_factor >= 1.0)) return Error{at + "options.alarm_factor must be >= 1"};
+  if (!(o.false_alarm_rate > 0.0 && o.false_alarm_rate < 0.5)) {
+    return Error{at + fmt::format("options.false_alarm_rate must be in (0, 0.5), got {}",
+                                  o.false_alarm_rate)};
+  }
+  if (!(o.scale_floor >= 0.0 && o.scale_floor <= 1.0)) {
+    return Error{at + fmt::format("options.scale_floor must be in [0, 1], got {}", o.scale_floor)};
+  }
+  if (!(o.mesh_separation >= 1.0 && o.mesh_separation <= 100.0)) {
+    return Error{at + fmt::format("options.mesh_separation must be in [1, 100], got {}",
+                                  o.mesh_separation)};
+  }
   if (auto st = ValidateIdentificationOptions(o.identification); !st) {
     return Error{at + "options.identification: " + st.error()};
   }
@@ -200,7 +212,7 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
       if (std::abs(impl->rate_groups[g].ratio - r) <= tol * r) found = static_cast<int>(g);
     }
     if (found < 0) {
-      impl->rate_groups.push_back(RateGroup{r, {}, {}, {}, {}});
+      impl->rate_groups.push_back(RateGroup{r, {}, {}, {}, {}, {}, {}, {}});
       found = static_cast<int>(impl->rate_groups.size()) - 1;
     }
     impl->rate_groups[static_cast<std::size_t>(found)].shafts.push_back(static_cast<int>(s));
@@ -214,6 +226,60 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
     rg.gear_teeth.push_back(train.gears[g].teeth);
     rg.gear_meshes.push_back(t.gear_mesh[g]);
   }
+
+  // Each group's distinct meshes and their orders on its synchronous average (a gear of z
+  // teeth meshes at order z of its own shaft; both gears of a mesh may sit in one group).
+  for (RateGroup& rg : impl->rate_groups) {
+    for (std::size_t i = 0; i < rg.gears.size(); ++i) {
+      const int mesh = rg.gear_meshes[i];
+      if (mesh < 0 ||
+          std::find(rg.meshes.begin(), rg.meshes.end(), mesh) != rg.meshes.end()) {
+        continue;
+      }
+      if (rg.meshes.size() >= kMaxMeshesPerShaft) {
+        return Error{at + fmt::format("shafts at ratio {} carry more than {} meshes", rg.ratio,
+                                      kMaxMeshesPerShaft)};
+      }
+      rg.meshes.push_back(mesh);
+      rg.mesh_orders.push_back(rg.gear_teeth[i]);
+    }
+    for (std::size_t k = 0; k < kConditionIndicatorCount; ++k) {
+      rg.indicator_names.emplace_back(
+          ConditionIndicatorName(static_cast<ConditionIndicator>(k)));
+    }
+    for (int mesh : rg.meshes) {
+      rg.indicator_names.push_back("sideband_" + t.mesh_names[static_cast<std::size_t>(mesh)]);
+    }
+    rg.indicator_names.emplace_back("exclusive_residual");
+  }
+
+  // Condition-indicator signals and the indicator vector's layout.
+  for (std::size_t r = 0; r < set.channels.size(); ++r) {
+    impl->condition_signals.push_back(
+        {ConditionSource::kMeasured, static_cast<int>(r),
+         set.channels[r].sensor + "/" + set.channels[r].axis});
+  }
+  for (std::size_t p = 0; p < set.paths.size(); ++p) {
+    impl->condition_signals.push_back(
+        {ConditionSource::kContribution, static_cast<int>(p), set.paths[p].name});
+  }
+  for (std::size_t p = 0; p < set.paths.size(); ++p) {
+    impl->condition_signals.push_back(
+        {ConditionSource::kForce, static_cast<int>(p), set.paths[p].name});
+  }
+  std::size_t offset = 0;
+  for (std::size_t sig = 0; sig < impl->condition_signals.size(); ++sig) {
+    for (std::size_t g = 0; g < impl->rate_groups.size(); ++g) {
+      const std::size_t count = impl->rate_groups[g].indicator_names.size();
+      impl->condition_slots.push_back({sig, g, offset, count});
+      offset += count;
+    }
+  }
+  impl->envelope_offset = offset;
+  for (const char* kind : {"envelope_raw_", "envelope_rec_"}) {
+    for (const TrainShaft& s : train.shafts) impl->envelope_names.push_back(kind + s.name);
+  }
+  impl->indicator_count = offset + impl->envelope_names.size();
 
   impl->expect.machine_id = id;
   impl->expect.channels = setup.block_channels;

@@ -24,6 +24,27 @@ struct RateGroup {
   std::vector<int> gears;         // gears keyed on those shafts
   std::vector<int> gear_teeth;    // their tooth counts = their mesh orders on this group's TSA
   std::vector<int> gear_meshes;   // their mesh indices (-1: in no mesh)
+  std::vector<int> meshes;        // distinct meshes of those gears
+  std::vector<int> mesh_orders;   // each one's order on this group's synchronous average
+  // Names of one condition-indicator set at this rate: the core indicators, the per-mesh
+  // sideband energies ("sideband_<mesh name>"), the exclusive residual.
+  std::vector<std::string> indicator_names;
+};
+
+// One signal whose condition indicators are computed at every rate group.
+struct ConditionSignal {
+  ConditionSource source = ConditionSource::kMeasured;
+  int index = -1;    // FRF row (measured) or path
+  std::string name;  // "A1/x" or the path name
+};
+
+// Where one (signal, group) set of condition indicators sits in the machine's indicator
+// vector (the vector the healthy baseline learns).
+struct ConditionSlot {
+  std::size_t signal = 0;  // index into MachineContext::condition_signals
+  std::size_t group = 0;   // index into MachineContext::rate_groups
+  std::size_t offset = 0;  // first entry in the indicator vector
+  std::size_t count = 0;   // entries: rate_groups[group].indicator_names.size()
 };
 
 struct MachineContext {
@@ -40,6 +61,14 @@ struct MachineContext {
   std::vector<RateGroup> rate_groups;  // in order of first shaft
   std::vector<int> shaft_group;        // per shaft: its rate group
   VerdictTopology topology;
+
+  // Condition indicators: signals (every measured channel, every path's contribution and
+  // force), slots signal-major, then the envelope indicators (raw, reconstructed per shaft).
+  std::vector<ConditionSignal> condition_signals;
+  std::vector<ConditionSlot> condition_slots;
+  std::size_t envelope_offset = 0;     // first envelope entry in the indicator vector
+  std::size_t indicator_count = 0;     // length of the indicator vector
+  std::vector<std::string> envelope_names;  // "envelope_raw_<shaft>", "envelope_rec_<shaft>"
 
   double band_lo = 0.0;       // analysis band, Hz
   double band_hi = 0.0;

@@ -6,7 +6,9 @@
 #include <optional>
 #include <vector>
 
+#include "core/diagnosis/alarm_model.h"
 #include "core/diagnosis/healthy_baseline.h"
+#include "core/diagnosis/robust_baseline.h"
 #include "core/pipeline/block_validation.h"
 
 namespace gearpath {
@@ -30,10 +32,16 @@ struct HealthyMean {
 
 struct MachineState {
   SequenceTracker tracker;
-  std::optional<HealthyBaseline> envelope_baseline;  // raw (shafts) then reconstructed (shafts)
+  // The healthy baseline of the whole indicator vector (MachineContext layout); the machine
+  // is `learning` until it is complete.
+  std::optional<RobustBaseline> indicator_baseline;
+  double limit_z = 0.0;  // z limit for the target false-alarm rate
+  HealthyMean residual_variance_healthy;             // per condition slot: NA4's reference
+  std::optional<HealthyBaseline> envelope_baseline;  // published envelope thresholds
   HealthyMean criterion_healthy;                     // per path: dominant-path criterion
   HealthyMean path_force_healthy;                    // per path: force on the sideband lines
-  bool learning = true;                              // the envelope baseline is incomplete
+  std::optional<AlarmModel> alarm;                   // persistence, hysteresis, clear delay
+  bool learning = true;                              // indicator_baseline is incomplete
 };
 
 }  // namespace gearpath

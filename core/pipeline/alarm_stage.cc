@@ -1,0 +1,144 @@
+#include "core/pipeline/alarm_stage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "core/pipeline/block_workspace.h"
+#include "core/pipeline/machine_context.h"
+#include "core/pipeline/machine_state.h"
+
+namespace gearpath {
+namespace {
+
+double Clamp01(double v) noexcept { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
+
+// Appends ", "-separated names of the gears in `mask` to buf[pos..cap).
+std::size_t AppendGears(char* buf, std::size_t cap, std::size_t pos, const VerdictTopology& t,
+                        std::uint32_t mask) noexcept {
+  bool first = true;
+  for (std::size_t g = 0; g < t.gear_names.size() && pos + 1 < cap; ++g) {
+    if (!(mask >> g & 1u)) continue;
+    const int n = std::snprintf(buf + pos, cap - pos, "%s%s", first ? "" : ", ",
+                                t.gear_names[g].c_str());
+    if (n > 0) pos = std::min(cap - 1, pos + static_cast<std::size_t>(n));
+    first = false;
+  }
+  return pos;
+}
+
+}  // namespace
+
+Status AlarmStage::Configure(const MachineContext&, BlockWorkspace&) { return Status::Ok(); }
+
+RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  const MachineContext& m = ctx.machine;
+  MachineState& st = ctx.state;
+  const VerdictTopology& t = m.topology;
+  GearVerdict& v = ctx.out.verdict;
+  const bool scored = ctx.out.score.limit_z > 0.0;
+  AlarmEvidence evidence;
+  evidence.learning = !scored && st.learning;
+  evidence.score = scored ? ctx.out.score.score : std::numeric_limits<double>::quiet_NaN();
+  evidence.gear_vote =
+      w.localisation.gear_mask != 0 ? static_cast<int>(w.localisation.gear_mask) : -1;
+  const AlarmStatus& a = st.alarm->Update(evidence);
+  ctx.out.score.exceed_count = a.exceed_count;
+  ctx.out.score.window = a.window;
+
+  v.state = a.state;
+  v.gear = -1;
+  v.gear_name = {};
+  v.shaft = -1;
+  v.shaft_name = {};
+  v.characteristic_hz = 0.0;
+  v.confidence = 0.0;
+  v.mesh = -1;
+  v.candidates.clear();
+  v.candidate_names.clear();
+  v.reason.Clear();
+  if (a.state == FaultState::kLearning) {
+    v.reason.Format("learning the healthy baseline (%d of %d blocks); no verdict yet",
+                    ctx.out.score.baseline_blocks_learned, ctx.out.score.baseline_blocks_needed);
+    return RejectReason::kNone;
+  }
+  if (!(w.speed_hz > 0.0)) {
+    v.reason.Assign(
+        "input speed unknown (not in the block, not configured, no mesh lines to track): "
+        "indicators not computed, state held");
+    return RejectReason::kNone;
+  }
+  const double score = ctx.out.score.score;
+  if (a.state == FaultState::kNoFault) {
+    v.confidence = Clamp01(1.0 - score);
+    v.reason.Format("every indicator within the healthy baseline (highest: %.*s of %.*s at "
+                    "%.0f %% of its limit)",
+                    static_cast<int>(ctx.out.score.indicator.size()),
+                    ctx.out.score.indicator.data(), static_cast<int>(ctx.out.score.signal.size()),
+                    ctx.out.score.signal.data(), 100.0 * score);
+    return RejectReason::kNone;
+  }
+
+  // Suspected or alarm: the latched localisation (most voted among the recent exceedances).
+  const std::uint32_t mask =
+      a.latched_vote > 0 ? static_cast<std::uint32_t>(a.latched_vote) : w.localisation.gear_mask;
+  for (std::size_t g = 0; g < t.gear_names.size(); ++g) {
+    if (!(mask >> g & 1u)) continue;
+    v.candidates.push_back(static_cast<int>(g));
+    v.candidate_names.push_back(t.gear_names[g]);
+  }
+  if (!v.candidates.empty()) {
+    v.gear = v.candidates.front();
+    v.gear_name = t.gear_names[static_cast<std::size_t>(v.gear)];
+    v.shaft = t.gear_shaft[static_cast<std::size_t>(v.gear)];
+    v.shaft_name = t.shaft_names[static_cast<std::size_t>(v.shaft)];
+    v.characteristic_hz = t.shaft_ratio[static_cast<std::size_t>(v.shaft)] * w.speed_hz;
+    int mesh = t.gear_mesh[static_cast<std::size_t>(v.gear)];
+    for (int g : v.candidates) {
+      if (t.gear_mesh[static_cast<std::size_t>(g)] != mesh) mesh = -1;
+    }
+    v.mesh = mesh;
+  }
+  // Confidence that the fault is among the candidates: how far over the limit the recent
+  // blocks are, times how clearly the mesh was separated (1 when only one mesh was possible).
+  const BlockWorkspace::Localisation& loc = w.localisation;
+  const double strength = Clamp01(1.0 - 1.0 / std::max(score, 1.0));
+  const double persistence =
+      a.window > 0 ? static_cast<double>(a.exceed_count) / static_cast<double>(a.window) : 0.0;
+  const double separation =
+      loc.mesh_count > 1 && loc.mesh_evidence > 0.0
+          ? Clamp01(1.0 - loc.other_evidence / loc.mesh_evidence)
+          : 1.0;
+  v.confidence = Clamp01((0.5 * strength + 0.5 * persistence) * (0.5 + 0.5 * separation));
+
+  char buf[256];
+  std::size_t pos = 0;
+  const auto add = [&](const char* format, auto... args) {
+    if (pos + 1 >= sizeof buf) return;
+    const int n = std::snprintf(buf + pos, sizeof buf - pos, format, args...);
+    if (n > 0) pos = std::min(sizeof buf - 1, pos + static_cast<std::size_t>(n));
+  };
+  add("%.*s of %.*s at %.1fx its limit at shaft rate %.3g Hz (%d of %d blocks)",
+      static_cast<int>(ctx.out.score.indicator.size()), ctx.out.score.indicator.data(),
+      static_cast<int>(ctx.out.score.signal.size()), ctx.out.score.signal.data(), score,
+      v.characteristic_hz, a.exceed_count, a.window);
+  if (loc.mesh_count > 1) {
+    add(loc.mesh >= 0 ? "; mesh %s by sidebands/end bearings (%.1f vs %.1f)"
+                      : "; meshes not separated (%s %.1f vs %.1f)",
+        loc.mesh >= 0 ? t.mesh_names[static_cast<std::size_t>(loc.mesh)].c_str() : "evidence",
+        loc.mesh_evidence, loc.other_evidence);
+  }
+  if (v.candidates.size() == 1) {
+    add(" -> gear ");
+  } else if (v.candidates.size() > 1) {
+    add(" -> candidates ");
+  }
+  pos = AppendGears(buf, sizeof buf, pos, t, mask);
+  if (v.candidates.size() > 1 && v.mesh >= 0) add(": same mesh and shaft rate, inseparable");
+  v.reason.Assign(std::string_view(buf, pos));
+  return RejectReason::kNone;
+}
+
+}  // namespace gearpath

@@ -1,0 +1,132 @@
+#include "core/pipeline/condition_indicator_stage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <utility>
+
+#include "core/pipeline/block_workspace.h"
+#include "core/pipeline/machine_context.h"
+#include "core/pipeline/machine_state.h"
+
+namespace gearpath {
+namespace {
+
+// Distance (in orders of `other`) under which a line counts as a harmonic of another rate.
+constexpr double kCommonOrderTolerance = 0.1;
+
+std::size_t NextPowerOfTwo(std::size_t v) {
+  std::size_t p = 4;
+  while (p < v) p <<= 1;
+  return p;
+}
+
+}  // namespace
+
+Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWorkspace& work) {
+  const double fs = machine.setup.options.sample_rate_hz;
+  // A whole revolution must fit in the block, so M (>= fs / f) never needs to exceed it.
+  const std::size_t max_points = std::min<std::size_t>(NextPowerOfTwo(work.n), 1u << 16);
+  auto tsa = SynchronousAverage::Create(work.n, fs, max_points);
+  if (!tsa) return Error{"synchronous average: " + tsa.error()};
+  tsa_.emplace(std::move(tsa.value()));
+  auto ind = GearConditionIndicators::Create(max_points);
+  if (!ind) return Error{"condition indicators: " + ind.error()};
+  indicators_.emplace(std::move(ind.value()));
+  record_ = tsa_->MakeRecord();
+  signal_.assign(work.n, 0.0);
+
+  const int low_orders = indicators_->options().low_shaft_orders;
+  exclusive_.assign(machine.rate_groups.size(), {});
+  for (std::size_t g = 0; g < machine.rate_groups.size(); ++g) {
+    const RateGroup& rg = machine.rate_groups[g];
+    std::vector<std::uint8_t>& mask = exclusive_[g];
+    mask.assign(max_points / 2 + 1, 0);
+    for (std::size_t k = static_cast<std::size_t>(low_orders) + 1; k < mask.size(); ++k) {
+      bool keep = true;
+      for (int order : rg.mesh_orders) keep = keep && (k % static_cast<std::size_t>(order)) != 0;
+      for (std::size_t h = 0; h < machine.rate_groups.size() && keep; ++h) {
+        if (h == g) continue;
+        const double x =
+            static_cast<double>(k) * rg.ratio / machine.rate_groups[h].ratio;
+        keep = std::abs(x - std::round(x)) > kCommonOrderTolerance;
+      }
+      mask[k] = keep ? 1 : 0;
+    }
+  }
+  return Status::Ok();
+}
+
+// The time signal of condition signal `signal` (a view of the block or of signal_).
+std::span<const double> ConditionIndicatorStage::SignalOf(const StageContext& ctx,
+                                                          std::size_t signal) noexcept {
+  BlockWorkspace& w = ctx.work;
+  const ConditionSignal& cs = ctx.machine.condition_signals[signal];
+  const auto index = static_cast<std::size_t>(cs.index);
+  switch (cs.source) {
+    case ConditionSource::kMeasured:
+      return std::span<const double>(w.time).subspan(index * w.n, w.n);
+    case ConditionSource::kContribution:
+      w.Contribution(index, static_cast<std::size_t>(w.best_channel[index]), w.one_spec);
+      break;
+    case ConditionSource::kForce:
+      std::fill(w.one_spec.begin(), w.one_spec.end(), BlockWorkspace::Cd{});
+      for (Eigen::Index i = 0; i < w.map.frf.bins(); ++i) {
+        w.one_spec[w.map.first_bin + static_cast<std::size_t>(i)] =
+            w.forces(static_cast<Eigen::Index>(index), i);
+      }
+      break;
+  }
+  (void)w.inverse->Process(w.one_spec, signal_);
+  return signal_;
+}
+
+RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  const MachineContext& m = ctx.machine;
+  const MachineState& st = ctx.state;
+  std::fill(w.indicators.begin(), w.indicators.end(), 0.0);
+  std::fill(w.slot_valid.begin(), w.slot_valid.end(), std::uint8_t{0});
+  std::fill(w.slot_revolutions.begin(), w.slot_revolutions.end(), 0);
+  if (!(w.speed_hz > 0.0)) return RejectReason::kNone;
+  const std::size_t groups = m.rate_groups.size();
+  for (std::size_t sig = 0; sig < m.condition_signals.size(); ++sig) {
+    const std::span<const double> signal = SignalOf(ctx, sig);
+    for (std::size_t g = 0; g < groups; ++g) {
+      const std::size_t slot = sig * groups + g;
+      const ConditionSlot& cs = m.condition_slots[slot];
+      const RateGroup& rg = m.rate_groups[g];
+      const double shaft_hz = rg.ratio * w.speed_hz;
+      w.slot_shaft_hz[slot] = shaft_hz;
+      if (!tsa_->Process(signal, shaft_hz, record_).ok()) continue;
+      const double na4_reference =
+          st.residual_variance_healthy.blocks > 0 ? st.residual_variance_healthy.mean[slot] : 0.0;
+      if (!indicators_->Compute(record_.tsa(), record_.orders(), rg.mesh_orders, na4_reference,
+                                values_)
+               .ok()) {
+        continue;
+      }
+      double* out = w.indicators.data() + cs.offset;
+      std::copy(values_.value.begin(), values_.value.end(), out);
+      std::size_t e = kConditionIndicatorCount;
+      for (std::size_t i = 0; i < rg.meshes.size(); ++i) out[e++] = values_.sideband_energy[i];
+      // Exclusive residual relative to the TSA's energy (DC excluded).
+      const auto orders = record_.orders();
+      const std::vector<std::uint8_t>& mask = exclusive_[g];
+      double exclusive = 0.0;
+      double total = 0.0;
+      for (std::size_t k = 1; k < orders.size(); ++k) {
+        const double energy = 0.5 * std::norm(orders[k]);
+        total += energy;
+        if (k < mask.size() && mask[k]) exclusive += energy;
+      }
+      out[e] = total > 0.0 ? exclusive / total : 0.0;
+      w.slot_valid[slot] = 1;
+      w.slot_revolutions[slot] = static_cast<int>(record_.revolutions);
+      w.slot_residual_variance[slot] = values_.residual_variance;
+    }
+  }
+  return RejectReason::kNone;
+}
+
+}  // namespace gearpath

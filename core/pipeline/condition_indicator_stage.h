@@ -1,0 +1,40 @@
+// ConditionIndicatorStage: time-synchronous averages and the classical gear condition
+// indicators (core/dsp/synchronous_average.h, core/diagnosis/gear_condition_indicators.h) of
+// every condition signal at every shaft rate: each measured channel, each path's contribution
+// at its indicator channel and each identified bearing force (DESIGN.md: a fault must be seen
+// whether it is impulsive or not, and on whichever signal carries it best).
+//
+// Besides the standard indicators, per rate group: the sideband energy around each of its
+// meshes (which mesh a fault modulates) and the EXCLUSIVE residual: the residual energy on the
+// orders of this rate that are not harmonics of any other shaft rate, relative to the TSA
+// energy. Equal tooth ratios make some orders common to two rates (Table 1: 10 Hz and 7 Hz
+// share every 70 Hz line); leaving them out keeps one shaft's fault from scoring on another.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/diagnosis/gear_condition_indicators.h"
+#include "core/dsp/synchronous_average.h"
+#include "core/pipeline/pipeline_stage.h"
+
+namespace gearpath {
+
+class ConditionIndicatorStage final : public PipelineStage {
+ public:
+  const char* name() const noexcept override { return "condition_indicators"; }
+  Status Configure(const MachineContext& machine, BlockWorkspace& work) override;
+  RejectReason Process(StageContext& ctx) noexcept override;
+
+ private:
+  std::span<const double> SignalOf(const StageContext& ctx, std::size_t signal) noexcept;
+
+  std::optional<SynchronousAverage> tsa_;
+  std::optional<GearConditionIndicators> indicators_;
+  SynchronousAverageRecord record_;
+  ConditionIndicatorValues values_;
+  std::vector<double> signal_;                       // n: one signal in time
+  std::vector<std::vector<std::uint8_t>> exclusive_;  // per group: order line is exclusive
+};
+
+}  // namespace gearpath

@@ -1,0 +1,148 @@
+#include "core/pipeline/indicator_scoring_stage.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/diagnosis/gear_condition_indicators.h"
+#include "core/pipeline/block_workspace.h"
+#include "core/pipeline/machine_context.h"
+#include "core/pipeline/machine_state.h"
+
+namespace gearpath {
+
+Status IndicatorScoringStage::Configure(const MachineContext& machine, BlockWorkspace&) {
+  two_sided_.assign(machine.indicator_count, 0);
+  for (const ConditionSlot& slot : machine.condition_slots) {
+    for (ConditionIndicator i : {ConditionIndicator::kMeshHarmonics, ConditionIndicator::kFm0,
+                                 ConditionIndicator::kTsaRms}) {
+      two_sided_[slot.offset + static_cast<std::size_t>(i)] = 1;
+    }
+  }
+  envelope_.assign(machine.envelope_names.size(), 0.0);
+  return Status::Ok();
+}
+
+// A healthy block: into the baselines (only when every indicator could be computed).
+void IndicatorScoringStage::Learn(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  MachineState& st = ctx.state;
+  if (!(w.speed_hz > 0.0)) return;
+  const bool complete =
+      std::all_of(w.slot_valid.begin(), w.slot_valid.end(), [](std::uint8_t v) { return v != 0; });
+  if (st.envelope_baseline && !st.envelope_baseline->learned()) st.envelope_baseline->Add(envelope_);
+  if (!complete) return;
+  if (st.indicator_baseline->Add(w.indicators)) {
+    st.residual_variance_healthy.Add(w.slot_residual_variance);
+  }
+}
+
+void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  const MachineContext& m = ctx.machine;
+  const MachineState& st = ctx.state;
+  std::fill(w.slot_score.begin(), w.slot_score.end(), 0.0);
+  std::fill(w.group_score.begin(), w.group_score.end(), 0.0);
+  BlockScore& score = ctx.out.score;
+  if (st.learning || !(w.speed_hz > 0.0)) {
+    std::fill(w.z.begin(), w.z.end(), 0.0);
+    return;
+  }
+  (void)st.indicator_baseline->ZScores(w.indicators, w.z);
+  const double limit = st.limit_z;
+  const auto directional = [&](std::size_t i) {
+    return two_sided_[i] ? std::abs(w.z[i]) : w.z[i];
+  };
+  for (std::size_t s = 0; s < m.condition_slots.size(); ++s) {
+    if (!w.slot_valid[s]) {
+      const ConditionSlot& cs = m.condition_slots[s];
+      std::fill_n(w.z.begin() + static_cast<std::ptrdiff_t>(cs.offset), cs.count, 0.0);
+      continue;
+    }
+    const ConditionSlot& cs = m.condition_slots[s];
+    const RateGroup& rg = m.rate_groups[cs.group];
+    for (std::size_t k = 0; k < cs.count; ++k) {
+      const double d = directional(cs.offset + k) / limit;
+      if (d > w.slot_score[s]) w.slot_score[s] = d;
+      if (d > score.score) {
+        score.score = d;
+        score.indicator = rg.indicator_names[k];
+        score.signal = m.condition_signals[cs.signal].name;
+        score.shaft = m.topology.shaft_names[static_cast<std::size_t>(rg.shafts.front())];
+      }
+    }
+    w.group_score[cs.group] = std::max(w.group_score[cs.group], w.slot_score[s]);
+  }
+  const std::size_t shafts = m.shaft_ratio.size();
+  for (std::size_t e = 0; e < m.envelope_names.size(); ++e) {
+    const std::size_t i = m.envelope_offset + e;
+    const double d = directional(i) / limit;
+    const std::size_t shaft = e % shafts;
+    const auto group = static_cast<std::size_t>(m.shaft_group[shaft]);
+    w.group_score[group] = std::max(w.group_score[group], d);
+    if (d > score.score) {
+      score.score = d;
+      score.indicator = m.envelope_names[e];
+      score.signal = e < shafts ? "envelope (raw)" : "envelope (reconstructed)";
+      score.shaft = m.topology.shaft_names[shaft];
+    }
+  }
+}
+
+void IndicatorScoringStage::Publish(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  const MachineContext& m = ctx.machine;
+  const MachineState& st = ctx.state;
+  BlockResult& out = ctx.out;
+  out.condition.resize(m.condition_slots.size());
+  for (std::size_t s = 0; s < m.condition_slots.size(); ++s) {
+    const ConditionSlot& cs = m.condition_slots[s];
+    const ConditionSignal& sig = m.condition_signals[cs.signal];
+    const RateGroup& rg = m.rate_groups[cs.group];
+    BlockConditionIndicators& c = out.condition[s];
+    c.source = sig.source;
+    c.index = sig.index;
+    c.signal = sig.name;
+    c.shaft = m.topology.shaft_names[static_cast<std::size_t>(rg.shafts.front())];
+    c.shaft_hz = w.slot_shaft_hz[s];
+    c.revolutions = w.slot_revolutions[s];
+    c.value = std::span<const double>(w.indicators).subspan(cs.offset, cs.count);
+    c.z = std::span<const double>(w.z).subspan(cs.offset, cs.count);
+    c.score = w.slot_score[s];
+  }
+  const std::size_t shafts = m.shaft_ratio.size();
+  const bool envelope_learned = st.envelope_baseline && st.envelope_baseline->learned();
+  for (std::size_t s = 0; s < shafts; ++s) {
+    out.shafts[s].raw_threshold = envelope_learned ? st.envelope_baseline->thresholds()[s] : 0.0;
+    out.shafts[s].reconstructed_threshold =
+        envelope_learned ? st.envelope_baseline->thresholds()[shafts + s] : 0.0;
+  }
+  out.score.limit_z = st.learning ? 0.0 : st.limit_z;
+  out.score.clear_level = m.setup.options.clear_level;
+  out.score.baseline_blocks_learned = st.indicator_baseline->blocks_seen();
+  out.score.baseline_blocks_needed = st.indicator_baseline->blocks_needed();
+}
+
+RejectReason IndicatorScoringStage::Process(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  const MachineContext& m = ctx.machine;
+  const std::size_t shafts = m.shaft_ratio.size();
+  for (std::size_t s = 0; s < shafts; ++s) {
+    envelope_[s] = ctx.out.shafts[s].raw;
+    envelope_[shafts + s] = ctx.out.shafts[s].reconstructed;
+  }
+  std::copy(envelope_.begin(), envelope_.end(),
+            w.indicators.begin() + static_cast<std::ptrdiff_t>(m.envelope_offset));
+  ctx.out.score = BlockScore{};
+  MachineState& st = ctx.state;
+  if (st.learning) {
+    Learn(ctx);
+  } else if (st.envelope_baseline && !st.envelope_baseline->learned() && w.speed_hz > 0.0) {
+    st.envelope_baseline->Add(envelope_);
+  }
+  Score(ctx);
+  Publish(ctx);
+  st.learning = !st.indicator_baseline->learned();
+  return RejectReason::kNone;
+}
+
+}  // namespace gearpath
