@@ -54,8 +54,7 @@ Result<AlarmModel> AlarmModel::FromState(const AlarmModelState& state) {
   const auto raw_state = static_cast<int>(state.state);
   if (raw_state < static_cast<int>(FaultState::kLearning) ||
       raw_state > static_cast<int>(FaultState::kAlarm)) {
-    return Error{"alarm model state: state is not a FaultState, got " +
-                 std::to_string(raw_state)};
+    return Error{"alarm model state: state is not a FaultState, got " + std::to_string(raw_state)};
   }
   if ((state.exceed_bits & ~m.window_mask_) != 0) {
     return Error{"alarm model state: exceed_bits has bits beyond the window n = " +
@@ -70,9 +69,9 @@ Result<AlarmModel> AlarmModel::FromState(const AlarmModelState& state) {
                  std::to_string(state.blocks_in_state)};
   }
   if (state.votes.size() > static_cast<std::size_t>(state.options.n)) {
-    return Error{"alarm model state: votes must hold at most n = " +
-                 std::to_string(state.options.n) + " entries, got " +
-                 std::to_string(state.votes.size())};
+    return Error{
+        "alarm model state: votes must hold at most n = " + std::to_string(state.options.n) +
+        " entries, got " + std::to_string(state.votes.size())};
   }
   for (std::size_t i = 0; i < state.votes.size(); ++i) {
     if (state.votes[i] < 0) {

@@ -120,8 +120,7 @@ class AlarmModel {
   // The exact healthy-stream fractions of the header comment, for exceedance probability p
   // (score >= 1) and q (score >= clear_level), 0 < p <= q < 1. Valid for suspect_k = 1,
   // alarm_k = 2, clear_blocks <= n - 1; NaN otherwise.
-  static AlarmFractions ExpectedHealthyFractions(double p, double q,
-                                                 const AlarmOptions& options);
+  static AlarmFractions ExpectedHealthyFractions(double p, double q, const AlarmOptions& options);
 
  private:
   AlarmModel() = default;
