@@ -125,10 +125,11 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
       static_cast<int>(ctx.out.score.signal.size()), ctx.out.score.signal.data(), score,
       v.characteristic_hz, a.exceed_count, a.window);
   if (loc.mesh_count > 1) {
-    add(loc.mesh >= 0 ? "; mesh %s by sidebands/end bearings (%.1f vs %.1f)"
-                      : "; meshes not separated (%s %.1f vs %.1f)",
-        loc.mesh >= 0 ? t.mesh_names[static_cast<std::size_t>(loc.mesh)].c_str() : "evidence",
-        loc.mesh_evidence, loc.other_evidence);
+    add(loc.mesh >= 0 ? "; mesh %s by its transfer signature (%.0f %% vs %.0f %%)"
+                      : "; meshes not separated by their transfer signatures (%s%.0f %% vs "
+                        "%.0f %%)",
+        loc.mesh >= 0 ? t.mesh_names[static_cast<std::size_t>(loc.mesh)].c_str() : "",
+        100.0 * loc.mesh_evidence, 100.0 * loc.other_evidence);
   }
   if (v.candidates.size() == 1) {
     add(" -> gear ");

@@ -1,5 +1,6 @@
 #include "core/pipeline/block_workspace.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace gearpath {
@@ -40,6 +41,7 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   w.dominant_time.assign(channels * n, 0.0);
   w.indicators.assign(machine.indicator_count, 0.0);
   w.z.assign(machine.indicator_count, 0.0);
+  w.excess.assign(machine.indicator_count, 0.0);
   const std::size_t slots = machine.condition_slots.size();
   w.slot_valid.assign(slots, 0);
   w.slot_shaft_hz.assign(slots, 0.0);
@@ -47,6 +49,10 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   w.slot_residual_variance.assign(slots, 0.0);
   w.slot_score.assign(slots, 0.0);
   w.group_score.assign(machine.rate_groups.size(), 0.0);
+  w.signature_sensors = std::max(channels, paths);
+  w.signature_stride = static_cast<std::size_t>(kSignatureHarmonics) * w.signature_sensors *
+                       static_cast<std::size_t>(2 * kSignatureSidebands + 1);
+  w.signature_lines.assign(machine.signature_slots.size() * w.signature_stride, Cd{});
   w.one_spec.assign(w.bins, Cd{});
   w.raw_signal.assign(n, 0.0);
   w.rec_signal.assign(n, 0.0);

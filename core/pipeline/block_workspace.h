@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <array>
 #include <complex>
 #include <cstddef>
 #include <cstdint>
@@ -60,11 +61,17 @@ struct BlockWorkspace {
   // Condition indicators (machine.condition_slots layout, then the envelope indicators).
   std::vector<double> indicators;          // machine.indicator_count values
   std::vector<double> z;                   // their robust z-scores (0 while learning)
+  std::vector<double> excess;              // value - healthy median, >= 0 (0 while learning)
   std::vector<std::uint8_t> slot_valid;    // per slot: computed this block
   std::vector<double> slot_shaft_hz;       // per slot: the rate averaged at
   std::vector<int> slot_revolutions;       // per slot: revolutions averaged
   std::vector<double> slot_residual_variance;  // per slot: for NA4's healthy reference
   std::vector<double> slot_score;          // per slot: largest directional z / limit
+  // Lines around each mesh harmonic for the transfer signature: per signature slot, per
+  // harmonic, sensors x (2 kSignatureSidebands + 1), sensor-major.
+  std::vector<Cd> signature_lines;
+  std::size_t signature_stride = 0;       // values per signature slot
+  std::size_t signature_sensors = 0;      // max(channels, paths)
   std::vector<double> group_score;         // per rate group: largest slot score
 
   // Localisation of this block (LocalisationStage), read by the alarm stage.
@@ -75,6 +82,11 @@ struct BlockWorkspace {
     double mesh_evidence = 0.0;     // chosen mesh's evidence (z / limit)
     double other_evidence = 0.0;    // best other mesh's evidence (z / limit)
     int mesh_count = 0;             // meshes the group's gears sit on
+    double group_excess = 0.0;      // chosen group's exclusive-residual excess, units^2
+    double other_group_excess = 0.0;
+    // Per mesh of the group: transfer-signature parallel and orthogonal sideband excess over
+    // healthy (measured channels), units^2.
+    std::array<double, 4> parallel{}, orthogonal{};
   } localisation;
 
   std::vector<Cd> one_spec;         // bins: scratch spectrum of one signal

@@ -5,6 +5,7 @@
 #include <complex>
 #include <utility>
 
+#include "core/diagnosis/mesh_signature.h"
 #include "core/pipeline/block_workspace.h"
 #include "core/pipeline/machine_context.h"
 #include "core/pipeline/machine_state.h"
@@ -54,7 +55,62 @@ Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWo
       mask[k] = keep ? 1 : 0;
     }
   }
+  signature_slot_.assign(machine.rate_groups.size() * 2 * kMaxMeshesPerShaft, 0);
+  for (std::size_t i = 0; i < machine.signature_slots.size(); ++i) {
+    const SignatureSlot& ss = machine.signature_slots[i];
+    signature_slot_[(ss.group * 2 + (ss.forces ? 1 : 0)) * kMaxMeshesPerShaft + ss.mesh] = i;
+  }
   return Status::Ok();
+}
+
+// Copies the lines around each mesh harmonic of the last average (signal `signal` at group
+// `group`) into the workspace, for the transfer signature.
+void ConditionIndicatorStage::KeepSignatureLines(StageContext& ctx, std::size_t signal,
+                                                 std::size_t group) noexcept {
+  BlockWorkspace& w = ctx.work;
+  const ConditionSignal& cs = ctx.machine.condition_signals[signal];
+  if (cs.source == ConditionSource::kContribution) return;
+  const bool forces = cs.source == ConditionSource::kForce;
+  const RateGroup& rg = ctx.machine.rate_groups[group];
+  const auto orders = record_.orders();
+  const auto width = static_cast<std::size_t>(2 * kSignatureSidebands + 1);
+  const auto sensor = static_cast<std::size_t>(cs.index);
+  for (std::size_t i = 0; i < rg.meshes.size(); ++i) {
+    const std::size_t slot = signature_slot_[(group * 2 + (forces ? 1 : 0)) * kMaxMeshesPerShaft + i];
+    BlockWorkspace::Cd* base = w.signature_lines.data() + slot * w.signature_stride;
+    for (int h = 1; h <= kSignatureHarmonics; ++h) {
+      BlockWorkspace::Cd* lines = base + static_cast<std::size_t>(h - 1) * w.signature_sensors * width +
+                                  sensor * width;
+      for (int k = -kSignatureSidebands; k <= kSignatureSidebands; ++k) {
+        const long order = static_cast<long>(h) * rg.mesh_orders[i] + k;
+        lines[static_cast<std::size_t>(k + kSignatureSidebands)] =
+            order > 0 && static_cast<std::size_t>(order) < orders.size()
+                ? orders[static_cast<std::size_t>(order)]
+                : BlockWorkspace::Cd{};
+      }
+    }
+  }
+}
+
+// Parallel and orthogonal sideband energies of every signature slot.
+void ConditionIndicatorStage::Signatures(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  const MachineContext& m = ctx.machine;
+  const auto width = static_cast<std::size_t>(2 * kSignatureSidebands + 1);
+  for (std::size_t i = 0; i < m.signature_slots.size(); ++i) {
+    const SignatureSlot& ss = m.signature_slots[i];
+    const std::size_t sensors = ss.forces ? m.paths : m.channels;
+    MeshSignatureEnergy sum;
+    const BlockWorkspace::Cd* base = w.signature_lines.data() + i * w.signature_stride;
+    for (int h = 0; h < kSignatureHarmonics; ++h) {
+      AccumulateMeshSignature(
+          std::span<const BlockWorkspace::Cd>(
+              base + static_cast<std::size_t>(h) * w.signature_sensors * width, sensors * width),
+          sensors, kSignatureSidebands, sum);
+    }
+    w.indicators[ss.offset] = sum.parallel;
+    w.indicators[ss.offset + 1] = sum.orthogonal;
+  }
 }
 
 // The time signal of condition signal `signal` (a view of the block or of signal_).
@@ -88,6 +144,7 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
   std::fill(w.indicators.begin(), w.indicators.end(), 0.0);
   std::fill(w.slot_valid.begin(), w.slot_valid.end(), std::uint8_t{0});
   std::fill(w.slot_revolutions.begin(), w.slot_revolutions.end(), 0);
+  std::fill(w.signature_lines.begin(), w.signature_lines.end(), BlockWorkspace::Cd{});
   if (!(w.speed_hz > 0.0)) return RejectReason::kNone;
   const std::size_t groups = m.rate_groups.size();
   for (std::size_t sig = 0; sig < m.condition_signals.size(); ++sig) {
@@ -110,22 +167,21 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
       std::copy(values_.value.begin(), values_.value.end(), out);
       std::size_t e = kConditionIndicatorCount;
       for (std::size_t i = 0; i < rg.meshes.size(); ++i) out[e++] = values_.sideband_energy[i];
-      // Exclusive residual relative to the TSA's energy (DC excluded).
+      // Exclusive residual energy (units^2): comparable between rate groups of one signal.
       const auto orders = record_.orders();
       const std::vector<std::uint8_t>& mask = exclusive_[g];
       double exclusive = 0.0;
-      double total = 0.0;
-      for (std::size_t k = 1; k < orders.size(); ++k) {
-        const double energy = 0.5 * std::norm(orders[k]);
-        total += energy;
-        if (k < mask.size() && mask[k]) exclusive += energy;
+      for (std::size_t k = 1; k < orders.size() && k < mask.size(); ++k) {
+        if (mask[k]) exclusive += 0.5 * std::norm(orders[k]);
       }
-      out[e] = total > 0.0 ? exclusive / total : 0.0;
+      out[e] = exclusive;
       w.slot_valid[slot] = 1;
       w.slot_revolutions[slot] = static_cast<int>(record_.revolutions);
       w.slot_residual_variance[slot] = values_.residual_variance;
+      KeepSignatureLines(ctx, sig, g);
     }
   }
+  Signatures(ctx);
   return RejectReason::kNone;
 }
 

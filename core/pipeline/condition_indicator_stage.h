@@ -5,9 +5,8 @@
 // whether it is impulsive or not, and on whichever signal carries it best).
 //
 // Besides the standard indicators, per rate group: the sideband energy around each of its
-// meshes (which mesh a fault modulates) and the EXCLUSIVE residual: the residual energy on the
-// orders of this rate that are not harmonics of any other shaft rate, relative to the TSA
-// energy. Equal tooth ratios make some orders common to two rates (Table 1: 10 Hz and 7 Hz
+// meshes (which mesh a fault modulates) and the EXCLUSIVE residual: the residual energy (in
+// signal units^2) on the orders of this rate that are not harmonics of any other shaft rate. Equal tooth ratios make some orders common to two rates (Table 1: 10 Hz and 7 Hz
 // share every 70 Hz line); leaving them out keeps one shaft's fault from scoring on another.
 #pragma once
 
@@ -28,6 +27,8 @@ class ConditionIndicatorStage final : public PipelineStage {
 
  private:
   std::span<const double> SignalOf(const StageContext& ctx, std::size_t signal) noexcept;
+  void KeepSignatureLines(StageContext& ctx, std::size_t signal, std::size_t group) noexcept;
+  void Signatures(StageContext& ctx) noexcept;
 
   std::optional<SynchronousAverage> tsa_;
   std::optional<GearConditionIndicators> indicators_;
@@ -35,6 +36,8 @@ class ConditionIndicatorStage final : public PipelineStage {
   ConditionIndicatorValues values_;
   std::vector<double> signal_;                       // n: one signal in time
   std::vector<std::vector<std::uint8_t>> exclusive_;  // per group: order line is exclusive
+  // signature_slot_[(group * 2 + forces) * kMaxMeshesPerShaft + mesh]: signature slot index.
+  std::vector<std::size_t> signature_slot_;
 };
 
 }  // namespace gearpath

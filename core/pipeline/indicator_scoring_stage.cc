@@ -45,9 +45,14 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
   BlockScore& score = ctx.out.score;
   if (st.learning || !(w.speed_hz > 0.0)) {
     std::fill(w.z.begin(), w.z.end(), 0.0);
+    std::fill(w.excess.begin(), w.excess.end(), 0.0);
     return;
   }
   (void)st.indicator_baseline->ZScores(w.indicators, w.z);
+  const auto median = st.indicator_baseline->median();  // log scale: every entry is logged
+  for (std::size_t i = 0; i < w.indicators.size(); ++i) {
+    w.excess[i] = std::max(0.0, w.indicators[i] - std::exp(median[i]));
+  }
   const double limit = st.limit_z;
   const auto directional = [&](std::size_t i) {
     return two_sided_[i] ? std::abs(w.z[i]) : w.z[i];
@@ -71,6 +76,20 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
       }
     }
     w.group_score[cs.group] = std::max(w.group_score[cs.group], w.slot_score[s]);
+  }
+  for (std::size_t i = 0; i < m.signature_slots.size(); ++i) {
+    const SignatureSlot& ss = m.signature_slots[i];
+    for (std::size_t k = 0; k < 2; ++k) {
+      const double d = directional(ss.offset + k) / limit;
+      w.group_score[ss.group] = std::max(w.group_score[ss.group], d);
+      if (d > score.score) {
+        score.score = d;
+        score.indicator = m.signature_names[2 * i + k];
+        score.signal = ss.forces ? "bearing forces" : "measured channels";
+        score.shaft = m.topology.shaft_names[static_cast<std::size_t>(
+            m.rate_groups[ss.group].shafts.front())];
+      }
+    }
   }
   const std::size_t shafts = m.shaft_ratio.size();
   for (std::size_t e = 0; e < m.envelope_names.size(); ++e) {

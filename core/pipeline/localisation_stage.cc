@@ -23,36 +23,70 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
   BlockWorkspace::Localisation& loc = w.localisation;
   loc = {};
   if (ctx.out.score.limit_z <= 0.0) return RejectReason::kNone;  // not scored (learning)
-  const double limit = ctx.out.score.limit_z;
 
-  // 1. The rate group.
-  const auto best = std::max_element(w.group_score.begin(), w.group_score.end());
-  if (best == w.group_score.end()) return RejectReason::kNone;
-  const auto g = static_cast<std::size_t>(best - w.group_score.begin());
+  // 1. The rate group: the largest excess of EXCLUSIVE residual energy over healthy, summed
+  // over the measured channels (the same units for every group, and a fault's comb is whole
+  // only at its own shaft's rate); by z-score when no group shows an excess.
+  const std::size_t groups = m.rate_groups.size();
+  std::array<double, 32> group_excess{};
+  for (std::size_t s = 0; s < m.condition_slots.size(); ++s) {
+    const ConditionSlot& cs = m.condition_slots[s];
+    if (!w.slot_valid[s] || cs.group >= group_excess.size() ||
+        m.condition_signals[cs.signal].source != ConditionSource::kMeasured) {
+      continue;
+    }
+    group_excess[cs.group] += w.excess[cs.offset + cs.count - 1];
+  }
+  std::size_t g = 0;
+  for (std::size_t i = 1; i < groups && i < group_excess.size(); ++i) {
+    if (group_excess[i] > group_excess[g]) g = i;
+  }
+  if (!(group_excess[g] > 0.0)) {
+    g = static_cast<std::size_t>(std::max_element(w.group_score.begin(), w.group_score.end()) -
+                                 w.group_score.begin());
+  }
+  loc.group_excess = group_excess[g];
+  for (std::size_t i = 0; i < groups && i < group_excess.size(); ++i) {
+    if (i != g) loc.other_group_excess = std::max(loc.other_group_excess, group_excess[i]);
+  }
   const RateGroup& rg = m.rate_groups[g];
   loc.group = static_cast<int>(g);
   loc.mesh_count = static_cast<int>(rg.meshes.size());
 
-  // 2. Evidence per mesh of the group.
+  // 2. The mesh, when the group's gears sit on several.
+  // Transfer signature (core/diagnosis/mesh_signature.h), on the measured channels and on the
+  // identified forces: a fault on mesh m adds sideband energy PARALLEL to m's own tone near
+  // m's harmonics and energy ORTHOGONAL to the other meshes' tones near theirs. Evidence for m
+  // = its parallel excess + the others' orthogonal excess, as a fraction of the total over
+  // the group's meshes, averaged over the two sensor arrays (their units differ).
+  const std::size_t meshes = rg.meshes.size();
   std::array<double, kMaxMeshesPerShaft> evidence{};
-  const std::size_t exclusive = rg.indicator_names.size() - 1;
-  const auto residual_rms = static_cast<std::size_t>(ConditionIndicator::kResidualRms);
-  for (std::size_t s = 0; s < m.condition_slots.size(); ++s) {
-    const ConditionSlot& cs = m.condition_slots[s];
-    if (cs.group != g || !w.slot_valid[s]) continue;
-    const double* z = w.z.data() + cs.offset;
-    for (std::size_t i = 0; i < rg.meshes.size(); ++i) {
-      evidence[i] = std::max(evidence[i], z[kConditionIndicatorCount + i] / limit);
+  int arrays = 0;
+  for (bool forces : {false, true}) {
+    std::array<double, kMaxMeshesPerShaft> par{}, orth{};
+    for (const SignatureSlot& ss : m.signature_slots) {
+      if (ss.group != g || ss.forces != forces) continue;
+      par[ss.mesh] = w.excess[ss.offset];
+      orth[ss.mesh] = w.excess[ss.offset + 1];
     }
-    const ConditionSignal& sig = m.condition_signals[cs.signal];
-    if (sig.source == ConditionSource::kMeasured) continue;
-    const auto& seen = m.topology.path_meshes[static_cast<std::size_t>(sig.index)];
-    if (seen.size() != 1) continue;  // a bearing between two meshes speaks for neither
-    const double end = std::max(z[exclusive], z[residual_rms]) / limit;
-    for (std::size_t i = 0; i < rg.meshes.size(); ++i) {
-      if (rg.meshes[i] == seen.front()) evidence[i] = std::max(evidence[i], end);
+    if (!forces) {
+      loc.parallel = par;
+      loc.orthogonal = orth;
     }
+    std::array<double, kMaxMeshesPerShaft> e{};
+    double total = 0.0;
+    for (std::size_t i = 0; i < meshes; ++i) {
+      e[i] = par[i];
+      for (std::size_t j = 0; j < meshes; ++j) {
+        if (j != i) e[i] += orth[j] / static_cast<double>(meshes - 1);
+      }
+      total += e[i];
+    }
+    if (!(total > 0.0)) continue;
+    ++arrays;
+    for (std::size_t i = 0; i < meshes; ++i) evidence[i] += e[i] / total;
   }
+  for (std::size_t i = 0; i < meshes && arrays > 0; ++i) evidence[i] /= arrays;
   std::uint32_t chosen = 0;  // bit i = rg.meshes[i]
   if (rg.meshes.size() == 1) {
     chosen = 1u;

@@ -1,15 +1,22 @@
 // LocalisationStage: which gear the anomaly points at, from physics (DESIGN.md, "Two
 // physical facts"; docs/diagnosis.md):
-//  1. The SHAFT: the rate group whose synchronous-average indicators score highest (a
-//     localized tooth fault engages once per revolution of its own shaft). Shafts at equal
-//     rates cannot be told apart by rate, so the group is named, not one shaft.
-//  2. The MESH, when the group's gears sit on several meshes: (a) around which mesh's
-//     harmonics the sidebands rose (per-mesh sideband energy z on the group's averages), and
-//     (b) which END of the train carries the shaft-rate modulation: a mesh force loads the
-//     bearings of its own two shafts, so a path whose gears belong to one mesh only (an end
-//     bearing) speaks for that mesh; its exclusive residual and residual RMS at the group's
-//     rate are its evidence. The mesh with the stronger evidence wins when it leads the next by
-//     AnalysisOptions::mesh_separation; otherwise every close mesh stays a candidate.
+//  1. The SHAFT: the rate group whose EXCLUSIVE residual energy (orders of its rate that are
+//     no harmonic of another rate) rose most over healthy, summed over the measured channels
+//     (one unit for every group; a fault's comb is whole only at its own shaft's rate); by
+//     z-score when nothing rose. Shafts at equal rates cannot be told apart by rate, so the
+//     group is named, not one shaft.
+//  2. The MESH, when the group's gears sit on several meshes: by transfer signature
+//     (core/diagnosis/mesh_signature.h). A tooth fault on mesh m adds sideband energy that
+//     travels like m's own tone (parallel to it across the sensors) near m's harmonics and,
+//     when broadband, energy that does not travel like the other meshes' tones near theirs.
+//     Evidence for m = its parallel excess + the others' orthogonal excess, as a fraction of
+//     the total, averaged over the measured channels and the identified forces. The mesh wins
+//     when it leads the next by AnalysisOptions::mesh_separation; otherwise every close mesh
+//     stays a candidate. (Tried first: each mesh's sideband energy, and the end bearings'
+//     force excess - a mesh force loads its own two shafts' bearings. On the evaluation
+//     families both were right about half the time: the lumped model couples the meshes
+//     through the shared shaft's rotation, and an additive pulse's comb spreads over every
+//     mesh's neighbourhood.)
 //  3. The GEARS: the group's gears on the chosen mesh(es). Two gears with the same rate on the
 //     same mesh (seed Table 1's G3 and G4) remain joint candidates: nothing separates them.
 #pragma once

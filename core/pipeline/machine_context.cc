@@ -275,6 +275,21 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
       offset += count;
     }
   }
+  impl->signature_offset = offset;
+  for (std::size_t g = 0; g < impl->rate_groups.size(); ++g) {
+    const RateGroup& rg = impl->rate_groups[g];
+    for (bool forces : {false, true}) {
+      for (std::size_t i = 0; i < rg.meshes.size(); ++i) {
+        impl->signature_slots.push_back({g, forces, i, offset});
+        const std::string tail = t.mesh_names[static_cast<std::size_t>(rg.meshes[i])] + "_" +
+                                 (forces ? "forces" : "measured") + "@" +
+                                 t.shaft_names[static_cast<std::size_t>(rg.shafts.front())];
+        impl->signature_names.push_back("signature_parallel_" + tail);
+        impl->signature_names.push_back("signature_orthogonal_" + tail);
+        offset += 2;
+      }
+    }
+  }
   impl->envelope_offset = offset;
   for (const char* kind : {"envelope_raw_", "envelope_rec_"}) {
     for (const TrainShaft& s : train.shafts) impl->envelope_names.push_back(kind + s.name);

@@ -47,6 +47,20 @@ struct ConditionSlot {
   std::size_t count = 0;   // entries: rate_groups[group].indicator_names.size()
 };
 
+// Where one mesh's transfer signature (core/diagnosis/mesh_signature.h) at one rate group,
+// over one sensor array (the measured channels or the identified forces), sits in the
+// indicator vector: two entries, the parallel and the orthogonal sideband energy.
+struct SignatureSlot {
+  std::size_t group = 0;
+  bool forces = false;     // false: measured channels; true: identified bearing forces
+  std::size_t mesh = 0;    // index into rate_groups[group].meshes
+  std::size_t offset = 0;  // first of the two entries
+};
+
+// Sidebands and mesh harmonics the transfer signature looks at.
+inline constexpr int kSignatureSidebands = 3;   // k = 1..3 around each harmonic
+inline constexpr int kSignatureHarmonics = 3;   // h = 1..3
+
 struct MachineContext {
   MachineSetup setup;  // options normalised (speed search range filled in)
   BlockExpectations expect;
@@ -66,6 +80,9 @@ struct MachineContext {
   // force), slots signal-major, then the envelope indicators (raw, reconstructed per shaft).
   std::vector<ConditionSignal> condition_signals;
   std::vector<ConditionSlot> condition_slots;
+  std::vector<SignatureSlot> signature_slots;
+  std::vector<std::string> signature_names;  // one per entry, from signature_slots.front()
+  std::size_t signature_offset = 0;
   std::size_t envelope_offset = 0;     // first envelope entry in the indicator vector
   std::size_t indicator_count = 0;     // length of the indicator vector
   std::vector<std::string> envelope_names;  // "envelope_raw_<shaft>", "envelope_rec_<shaft>"
