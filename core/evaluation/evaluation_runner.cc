@@ -1,0 +1,247 @@
+#include "core/evaluation/evaluation_runner.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "core/evaluation/plant_family.h"
+#include "core/evaluation/plant_simulator.h"
+#include "core/pipeline/block_processor.h"
+
+namespace gearpath {
+namespace {
+
+bool Alarmed(FaultState s) { return s == FaultState::kSuspected || s == FaultState::kAlarm; }
+
+int GearIndex(const TrainLayout& layout, const std::string& name) {
+  for (std::size_t g = 0; g < layout.gears.size(); ++g) {
+    if (layout.gears[g].name == name) return static_cast<int>(g);
+  }
+  return -1;
+}
+
+int MeshOf(const TrainLayout& layout, int gear) {
+  for (std::size_t m = 0; m < layout.meshes.size(); ++m) {
+    if (layout.meshes[m].gear_a == gear || layout.meshes[m].gear_b == gear) {
+      return static_cast<int>(m);
+    }
+  }
+  return -1;
+}
+
+// Signed raw RMS change of the channel whose RMS changes most, faulty vs healthy.
+double MaxRmsChange(PlantSimulator& sim, std::int64_t first_sample) {
+  Eigen::MatrixXd healthy, faulty;
+  sim.NoiseFree(first_sample, false, healthy);
+  sim.NoiseFree(first_sample, true, faulty);
+  double best = 0.0;
+  for (Eigen::Index c = 0; c < healthy.cols(); ++c) {
+    const double h = healthy.col(c).norm();
+    if (h <= 0.0) continue;
+    const double change = faulty.col(c).norm() / h - 1.0;
+    if (std::abs(change) > std::abs(best)) best = change;
+  }
+  return best;
+}
+
+// Every fault model is linear in its depths (TE_f = (1 - s d w) TE_h + s p), and so is the
+// plant: with all depths scaled by s the faulty block is H + s G, G = F(1) - H. The smallest
+// s > 0 at which some channel's RMS reaches (1 +/- target) x its healthy RMS solves, per
+// channel, |G|^2 s^2 + 2 <H, G> s + |H|^2 (1 - (1 +/- target)^2) = 0. 0 = no such s.
+double SeverityScaleForRmsChange(PlantSimulator& sim, std::int64_t first_sample, double target) {
+  Eigen::MatrixXd healthy, faulty;
+  sim.NoiseFree(first_sample, false, healthy);
+  sim.NoiseFree(first_sample, true, faulty);
+  double best = 0.0;
+  for (Eigen::Index c = 0; c < healthy.cols(); ++c) {
+    const Eigen::VectorXd g = faulty.col(c) - healthy.col(c);
+    const double a = g.squaredNorm();
+    const double b = 2.0 * healthy.col(c).dot(g);
+    const double hh = healthy.col(c).squaredNorm();
+    if (a <= 0.0 || hh <= 0.0) continue;
+    for (double level : {1.0 + target, 1.0 - target}) {
+      const double cc = hh * (1.0 - level * level);
+      const double disc = b * b - 4.0 * a * cc;
+      if (disc < 0.0) continue;
+      for (double root : {(-b + std::sqrt(disc)) / (2.0 * a), (-b - std::sqrt(disc)) / (2.0 * a)}) {
+        if (root > 0.0 && (best == 0.0 || root < best)) best = root;
+      }
+    }
+  }
+  return best;
+}
+
+Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
+  ScenarioOutcome outcome;
+  outcome.scenario = sc;
+  Result<Plant> plant = MakePlant({sc.family, sc.variant, sc.channels, sc.seed});
+  if (!plant) return Error{plant.error()};
+  PlantExcitationConfig ex;
+  ex.fault = sc.fault;
+  ex.faulty_gear = sc.gear;
+  ex.seed = sc.seed;
+  Result<PlantExcitation> excitation = PlantExcitation::Create(plant->train, ex);
+  if (!excitation) return Error{excitation.error()};
+  PlantSimulatorConfig sim_config;
+  sim_config.machine_id = fmt::format("eval-{}", sc.index);
+  sim_config.sample_rate_hz = options.sample_rate_hz;
+  sim_config.block_length = options.block_length;
+  sim_config.input_speed_hz = sc.input_rpm / 60.0;
+  sim_config.noise_relative = sc.noise;
+  sim_config.tones = sc.unmodelled;
+  sim_config.bursts = sc.unmodelled;
+  sim_config.speed_drift = sc.unmodelled;
+  sim_config.seed = sc.seed;
+  Result<PlantSimulator> sim = PlantSimulator::Create(plant->dynamics, plant->channels,
+                                                      std::move(excitation).value(), sim_config);
+  if (!sim) return Error{sim.error()};
+  if (sc.fault != PlantFaultKind::kNone && options.target_rms_change > 0.0) {
+    const std::int64_t first =
+        static_cast<std::int64_t>(options.baseline_blocks) * options.block_length;
+    const double scale = SeverityScaleForRmsChange(*sim, first, options.target_rms_change);
+    if (scale > 0.0) {
+      sim->ScaleFaultSeverity(scale);
+      outcome.severity_scale = scale;
+    }
+    outcome.rms_change = MaxRmsChange(*sim, first);
+  }
+  outcome.severity = sim->excitation().severity();
+  Result<TrainLayout> layout = TrainLayoutFromGearTrain(plant->train);
+  if (!layout) return Error{"train layout: " + layout.error()};
+
+  MachineSetup setup;
+  setup.machine_id = sim_config.machine_id;
+  setup.frf_set = plant->model_frf;
+  setup.train = *layout;
+  setup.options.sample_rate_hz = options.sample_rate_hz;
+  Result<BlockProcessor> processor = BlockProcessor::Create(std::move(setup));
+  if (!processor) return Error{"block processor: " + processor.error()};
+  if (Status st = processor->Prepare(options.block_length); !st) {
+    return Error{"block processor: prepare: " + st.error()};
+  }
+
+  AccelBlock block;
+  BlockResult result;
+  const int total = options.baseline_blocks + options.evaluation_blocks;
+  for (int b = 0; b < total; ++b) {
+    const bool evaluation = b >= options.baseline_blocks;
+    sim->NextBlock(evaluation && sc.fault != PlantFaultKind::kNone, block);
+    const ProcessOutcome po = processor->Process(block.view(), result);
+    if (!po.accepted()) {
+      return Error{fmt::format("block {} rejected: {}", b, po.message.view())};
+    }
+    if (!evaluation) continue;
+    BlockVerdictRecord rec;
+    rec.state = result.verdict.state;
+    rec.gear = std::string(result.verdict.gear_name);
+    for (std::string_view c : result.verdict.candidate_names) rec.candidates.emplace_back(c);
+    rec.shaft = std::string(result.verdict.shaft_name);
+    outcome.verdicts.push_back(std::move(rec));
+  }
+  outcome.score = ScoreVerdicts(outcome.verdicts, sc.gear, *layout);
+  return outcome;
+}
+
+}  // namespace
+
+bool GearsInseparable(const TrainLayout& layout, int a, int b, double rate_tolerance) {
+  if (a == b) return true;
+  const int n = static_cast<int>(layout.gears.size());
+  if (a < 0 || b < 0 || a >= n || b >= n) return false;
+  const int mesh = MeshOf(layout, a);
+  if (mesh < 0) return false;
+  const TrainMesh& m = layout.meshes[static_cast<std::size_t>(mesh)];
+  if (!((m.gear_a == a && m.gear_b == b) || (m.gear_a == b && m.gear_b == a))) return false;
+  Result<std::vector<double>> ratios = ShaftRateRatios(layout);
+  if (!ratios) return false;
+  const double ra = (*ratios)[static_cast<std::size_t>(layout.gears[a].shaft)];
+  const double rb = (*ratios)[static_cast<std::size_t>(layout.gears[b].shaft)];
+  return std::abs(ra - rb) <= rate_tolerance * std::max(ra, rb);
+}
+
+bool VerdictNamesGear(const BlockVerdictRecord& verdict, const std::string& true_gear,
+                      const TrainLayout& layout) {
+  if (!Alarmed(verdict.state) || true_gear.empty()) return false;
+  std::vector<std::string> named = verdict.candidates;
+  if (!verdict.gear.empty() &&
+      std::find(named.begin(), named.end(), verdict.gear) == named.end()) {
+    named.push_back(verdict.gear);
+  }
+  if (std::find(named.begin(), named.end(), true_gear) == named.end()) return false;
+  const int truth = GearIndex(layout, true_gear);
+  for (const std::string& name : named) {
+    if (name == true_gear) continue;
+    if (!GearsInseparable(layout, GearIndex(layout, name), truth)) return false;
+  }
+  return true;
+}
+
+ScenarioScore ScoreVerdicts(std::span<const BlockVerdictRecord> evaluation,
+                            const std::string& true_gear, const TrainLayout& layout) {
+  ScenarioScore s;
+  s.faulty = !true_gear.empty();
+  s.blocks = static_cast<int>(evaluation.size());
+  for (std::size_t i = 0; i < evaluation.size(); ++i) {
+    const BlockVerdictRecord& v = evaluation[i];
+    if (Alarmed(v.state)) {
+      ++s.alarmed_blocks;
+      if (s.first_alarm_block == 0) s.first_alarm_block = static_cast<int>(i) + 1;
+    }
+    if (s.faulty && VerdictNamesGear(v, true_gear, layout)) ++s.right_gear_blocks;
+    if (i > 0 && v.state != evaluation[i - 1].state) ++s.flips;
+  }
+  const bool majority = 2 * s.alarmed_blocks > s.blocks;
+  if (s.faulty) {
+    s.detected = majority;
+    s.right_gear = 2 * s.right_gear_blocks > s.blocks;
+  } else {
+    s.false_alarm_blocks = s.alarmed_blocks;
+  }
+  return s;
+}
+
+ScenarioOutcome RunScenario(const Scenario& scenario, const RunnerOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  Result<ScenarioOutcome> r = Run(scenario, options);
+  ScenarioOutcome out;
+  if (r) {
+    out = std::move(r).value();
+  } else {
+    out.scenario = scenario;
+    out.error = r.error();
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+std::vector<ScenarioOutcome> RunScenarios(
+    const std::vector<Scenario>& scenarios, const RunnerOptions& options, int threads,
+    const std::function<void(std::size_t, std::size_t, const ScenarioOutcome&)>& progress) {
+  std::vector<ScenarioOutcome> outcomes(scenarios.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex progress_mutex;
+  std::size_t done = 0;
+  auto worker = [&] {
+    for (;;) {
+      const std::size_t i = next.fetch_add(1);
+      if (i >= scenarios.size()) return;
+      outcomes[i] = RunScenario(scenarios[i], options);
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      ++done;
+      if (progress) progress(done, scenarios.size(), outcomes[i]);
+    }
+  };
+  const int n = std::max(1, std::min<int>(threads, static_cast<int>(scenarios.size())));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < n; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  return outcomes;
+}
+
+}  // namespace gearpath

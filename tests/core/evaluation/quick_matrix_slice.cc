@@ -1,0 +1,48 @@
+// Slice test of the evaluation instrument: the quick matrix of the TUNING families (the
+// held-out family is never asserted on here, so no threshold is ever tuned against it) through
+// the current BlockProcessor, against the figures documented for it (docs/evaluation.md).
+// The constants are what the pipeline achieved when they were set; whoever improves the
+// pipeline raises them (and the doc) in the same commit. The margins absorb small numerical
+// differences between toolchains, not regressions.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <thread>
+
+#include "core/evaluation/evaluation_report.h"
+#include "core/evaluation/evaluation_runner.h"
+#include "core/evaluation/scenario_matrix.h"
+
+namespace gearpath {
+namespace {
+
+// Measured on the quick matrix, tuning families (80 scenarios), with the pipeline of commit
+// f497ab0 (envelope-indicator verdict): detection 10/64, right gear 7/64, 0 false alarms in
+// 80 healthy evaluation blocks.
+constexpr double kDocumentedDetection = 0.156;
+constexpr double kDocumentedRightGear = 0.109;
+constexpr double kDocumentedFalseAlarmsPerBlock = 0.0;
+constexpr double kMargin = 0.05;
+
+TEST(QuickMatrixSlice, TuningFamiliesMeetTheDocumentedFigures) {
+  MatrixFilter filter;
+  filter.held_out = HeldOutSelection::kExclude;
+  const std::vector<Scenario> scenarios = EnumerateScenarios(MatrixSize::kQuick, filter);
+  ASSERT_FALSE(scenarios.empty());
+  const int threads = std::max(2, static_cast<int>(std::thread::hardware_concurrency()));
+  const std::vector<ScenarioOutcome> outcomes = RunScenarios(scenarios, RunnerOptions{}, threads);
+  for (const ScenarioOutcome& o : outcomes) {
+    EXPECT_TRUE(o.error.empty()) << o.scenario.Key() << ": " << o.error;
+  }
+  const std::vector<PartitionSummary> summary = Summarise(outcomes);
+  std::fputs(FormatSummary(summary).c_str(), stdout);
+  ASSERT_EQ(summary.size(), 1u);
+  ASSERT_EQ(summary[0].name, "tuning");
+  const AggregateRow& all = summary[0].overall;
+  EXPECT_GE(all.detection_rate(), kDocumentedDetection - kMargin);
+  EXPECT_GE(all.right_gear_rate(), kDocumentedRightGear - kMargin);
+  EXPECT_LE(all.false_alarm_rate(), kDocumentedFalseAlarmsPerBlock + kMargin);
+}
+
+}  // namespace
+}  // namespace gearpath

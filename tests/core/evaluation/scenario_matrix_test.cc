@@ -1,0 +1,81 @@
+// Scenario matrix: sizes, held-out filtering, seeds fixed by identity, quick inside full and
+// covering every level.
+#include "core/evaluation/scenario_matrix.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+namespace gearpath {
+namespace {
+
+TEST(ScenarioMatrix, FullIsTheWholeFactorial) {
+  MatrixFilter all;
+  all.held_out = HeldOutSelection::kInclude;
+  const std::vector<Scenario> full = EnumerateScenarios(MatrixSize::kFull, all);
+  // 3 families x 2 trains x (4 kinds x 4 gears + 4 healthy replicas) x 5 speeds x 3 noise
+  // x 2 channel sets x 2 (unmodelled off / on).
+  EXPECT_EQ(full.size(), 3u * 2u * 20u * 5u * 3u * 2u * 2u);
+  std::set<std::string> keys;
+  std::set<std::uint64_t> seeds;
+  for (std::size_t i = 0; i < full.size(); ++i) {
+    EXPECT_EQ(full[i].index, i);
+    keys.insert(full[i].Key());
+    seeds.insert(full[i].seed);
+  }
+  EXPECT_EQ(keys.size(), full.size());
+  EXPECT_EQ(seeds.size(), full.size());
+}
+
+TEST(ScenarioMatrix, HeldOutFamilyIsExcludedByDefault) {
+  for (const Scenario& s : EnumerateScenarios(MatrixSize::kQuick)) {
+    EXPECT_NE(s.family, PlantFamily::kModalHousing);
+  }
+  MatrixFilter only;
+  only.held_out = HeldOutSelection::kOnly;
+  const std::vector<Scenario> held = EnumerateScenarios(MatrixSize::kQuick, only);
+  ASSERT_FALSE(held.empty());
+  for (const Scenario& s : held) EXPECT_TRUE(s.held_out());
+  MatrixFilter one;
+  one.families = {PlantFamily::kLumpedTorsional};
+  for (const Scenario& s : EnumerateScenarios(MatrixSize::kQuick, one)) {
+    EXPECT_EQ(s.family, PlantFamily::kLumpedTorsional);
+  }
+}
+
+TEST(ScenarioMatrix, QuickIsASubsetOfFullWithTheSameSeedsAndCoversEveryLevel) {
+  MatrixFilter all;
+  all.held_out = HeldOutSelection::kInclude;
+  std::map<std::string, std::uint64_t> full;
+  for (const Scenario& s : EnumerateScenarios(MatrixSize::kFull, all)) full[s.Key()] = s.seed;
+  const std::vector<Scenario> quick = EnumerateScenarios(MatrixSize::kQuick, all);
+  EXPECT_EQ(quick.size(), 3u * 2u * 20u);
+  std::map<PlantFamily, std::set<std::string>> levels;
+  for (const Scenario& s : quick) {
+    ASSERT_TRUE(full.count(s.Key())) << s.Key();
+    EXPECT_EQ(full[s.Key()], s.seed);
+    EXPECT_EQ(s.seed, ScenarioSeed(s.Key()));
+    std::set<std::string>& l = levels[s.family];
+    l.insert("rpm" + std::to_string(static_cast<int>(s.input_rpm)));
+    l.insert("noise" + std::to_string(static_cast<int>(s.noise * 100)));
+    l.insert(std::string("ch") + std::string(ChannelSetName(s.channels)));
+    l.insert(s.unmodelled ? "disturbed" : "clean");
+    l.insert(std::string(TrainVariantName(s.variant)));
+  }
+  for (const auto& [family, l] : levels) {
+    EXPECT_EQ(l.size(), 5u + 3u + 2u + 2u + 2u) << PlantFamilyName(family);
+  }
+}
+
+TEST(ScenarioMatrix, SpeedBands) {
+  EXPECT_EQ(SpeedBand(200), "below");
+  EXPECT_EQ(SpeedBand(300), "nominal");
+  EXPECT_EQ(SpeedBand(600), "nominal");
+  EXPECT_EQ(SpeedBand(900), "above");
+  EXPECT_EQ(ParseMatrixSize("quick"), MatrixSize::kQuick);
+  EXPECT_FALSE(ParseMatrixSize("medium").has_value());
+}
+
+}  // namespace
+}  // namespace gearpath
