@@ -23,6 +23,54 @@ std::string JoinLines(const std::vector<std::string>& lines) {
   return out;
 }
 
+// `"frf_set": "identity"` takes its paths from `channels`, each with the gears its sensor sits
+// near; any other FRF set names its own paths, so `gears` on a channel would be ignored.
+void CheckIdentityChannels(const json& m, const std::string& at,
+                           const std::set<std::string>& gear_names,
+                           std::vector<std::string>& errors) {
+  const bool identity = m["frf_set"].get<std::string>() == kIdentityFrfSet;
+  const json& channels = m["channels"];
+  if (identity && channels.empty()) {
+    errors.push_back(fmt::format("{}.channels: frf_set \"identity\" needs the block's channels "
+                                 "listed, each with the gears its sensor sits near "
+                                 "(channels[].gears)",
+                                 at));
+  }
+  for (std::size_t i = 0; i < channels.size(); ++i) {
+    const json& c = channels[i];
+    const std::string where = fmt::format("{}.channels[{}]", at, i);
+    if (!identity) {
+      if (c.contains("gears")) {
+        errors.push_back(fmt::format("{}.gears: only used with frf_set \"identity\" (an FRF "
+                                     "set names its paths' gears; override them in paths[])",
+                                     where));
+      }
+      continue;
+    }
+    if (!c.contains("gears")) {
+      errors.push_back(fmt::format("{}.gears: required with frf_set \"identity\" (the gears "
+                                   "this sensor sits nearest to)",
+                                   where));
+    } else {
+      const json& near = c["gears"];
+      std::set<std::string> named;
+      for (std::size_t g = 0; g < near.size(); ++g) {
+        const auto gear = near[g].get<std::string>();
+        if (!gear_names.contains(gear)) {
+          errors.push_back(fmt::format("{}.gears[{}]: unknown gear \"{}\"", where, g, gear));
+        } else if (!named.insert(gear).second) {
+          errors.push_back(fmt::format("{}.gears[{}]: gear \"{}\" is named twice", where, g, gear));
+        }
+      }
+    }
+    if (c["frf_row"].get<long>() >= 0) {
+      errors.push_back(fmt::format("{}.frf_row: must be -1 with frf_set \"identity\" (channel "
+                                   "i is row i of the identity set)",
+                                   where));
+    }
+  }
+}
+
 // Rules that span several keys of one machine.
 void CheckMachine(const json& m, const std::string& at, std::vector<std::string>& errors) {
   const json& acq = m["acquisition"];
@@ -65,6 +113,7 @@ void CheckMachine(const json& m, const std::string& at, std::vector<std::string>
                                    gears[i]["name"].get<std::string>()));
     }
   }
+  CheckIdentityChannels(m, at, gear_names, errors);
   const json& stages = m["gear_train"]["stages"];
   for (std::size_t i = 0; i < stages.size(); ++i) {
     for (const char* end : {"driver", "driven"}) {
@@ -158,8 +207,8 @@ Result<DaemonConfig> ParseDaemonConfig(std::string_view text, std::string_view o
   config.throughput_log_period_s = c["daemon"]["throughput_log_period_s"];
   config.domain_id = c["dds"]["domain_id"];
   const json& t = c["dds"]["topics"];
-  config.topics = {t["accel_block"], t["dominant_path"], t["suspected_gear"],
-                   t["envelope_indicators"], t["status"]};
+  config.topics = {t["accel_block"],         t["dominant_path"], t["suspected_gear"],
+                   t["envelope_indicators"], t["condition_indicators"], t["status"]};
   for (std::size_t i = 0; i < machines.size(); ++i) {
     config.machines.push_back({fmt::format("machines[{}]", i), machines[i]["id"],
                                machines[i]["frf_set"], machines[i]});

@@ -22,6 +22,7 @@ struct TopicNames {
   std::string dominant_path;
   std::string suspected_gear;
   std::string envelope_indicators;
+  std::string condition_indicators;
   std::string status;
   bool operator==(const TopicNames&) const = default;
 };
@@ -46,6 +47,8 @@ struct DaemonConfig {
 };
 
 inline constexpr std::string_view kBuiltinPrefix = "builtin:";
+// `"frf_set": "identity"`: monitoring before the hammer test (docs/configuration.md).
+inline constexpr std::string_view kIdentityFrfSet = "identity";
 inline constexpr std::string_view kEmbeddedOrigin = "<embedded default>";
 
 // Parses and validates config text. `origin` prefixes JSON syntax errors.

@@ -32,12 +32,22 @@ void FillDominantPath(std::string_view machine_id, const BlockResult& r,
   for (std::uint32_t i = 0; i < n; ++i) {
     CopyTruncated(paths[i].name, r.paths[i].name);
     paths[i].share = r.paths[i].share;
+    paths[i].criterion = r.paths[i].criterion;
   }
   out.band_lo_hz = r.analysis_band_lo_hz;
   out.band_hi_hz = r.analysis_band_hi_hz;
-  out.criterion = r.criterion == AnalysisOptions::DominantCriterion::kBandEnergy
-                      ? gearpath_CRITERION_BAND_ENERGY
-                      : gearpath_CRITERION_OTHER;
+  switch (r.criterion) {
+    case AnalysisOptions::DominantCriterion::kBandEnergy:
+      out.criterion = gearpath_CRITERION_BAND_ENERGY;
+      break;
+    case AnalysisOptions::DominantCriterion::kSidebandEnergy:
+      out.criterion = gearpath_CRITERION_SIDEBAND_ENERGY;
+      break;
+    case AnalysisOptions::DominantCriterion::kIndicator:
+      out.criterion = gearpath_CRITERION_INDICATOR;
+      break;
+    default: out.criterion = gearpath_CRITERION_OTHER; break;
+  }
 }
 
 void FillSuspectedGear(std::string_view machine_id, const BlockResult& r,
@@ -47,11 +57,12 @@ void FillSuspectedGear(std::string_view machine_id, const BlockResult& r,
   out.block_sequence = r.sequence;
   out.block_t0_ns = r.t0_ns;
   switch (v.state) {
+    case FaultState::kLearning: out.state = gearpath_LEARNING; break;
     case FaultState::kSuspected: out.state = gearpath_SUSPECTED; break;
     case FaultState::kAlarm: out.state = gearpath_ALARM; break;
     default: out.state = gearpath_NO_FAULT; break;
   }
-  const bool named = out.state != gearpath_NO_FAULT;
+  const bool named = out.state == gearpath_SUSPECTED || out.state == gearpath_ALARM;
   CopyTruncated(out.gear_name, named ? v.gear_name : std::string_view());
   CopyTruncated(out.shaft_name, named ? v.shaft_name : std::string_view());
   out.characteristic_frequency_hz = named ? v.characteristic_hz : 0.0;
@@ -83,6 +94,8 @@ void FillEnvelopeIndicators(std::string_view machine_id, const BlockResult& r,
     shafts[i].raw_indicator = s.raw;
     shafts[i].reconstructed_indicator = s.reconstructed;
     shafts[i].enhancement_percent = s.enhancement_percent;
+    shafts[i].raw_threshold = s.raw_threshold;
+    shafts[i].reconstructed_threshold = s.reconstructed_threshold;
     for (std::size_t h = 0; h < gearpath_HARMONICS && h < kIndicatorHarmonics; ++h) {
       shafts[i].raw_harmonics[h] = s.raw_harmonics[h];
       shafts[i].reconstructed_harmonics[h] = s.reconstructed_harmonics[h];
@@ -90,6 +103,81 @@ void FillEnvelopeIndicators(std::string_view machine_id, const BlockResult& r,
   }
   out.speed_hz = r.speed_hz;
   out.speed_source = dds::WireSpeedSource(r.speed_source);
+}
+
+IndicatorNamesByGroup IndicatorNamesOf(const BlockProcessor& processor) {
+  IndicatorNamesByGroup names;
+  for (std::size_t g = 0;; ++g) {
+    const std::span<const std::string> group = processor.ConditionIndicatorNames(g);
+    if (group.empty()) break;
+    names.push_back(group);
+  }
+  return names;
+}
+
+namespace {
+
+gearpath_SignalSource WireSignalSource(ConditionSource source) noexcept {
+  switch (source) {
+    case ConditionSource::kContribution: return gearpath_SIGNAL_CONTRIBUTION;
+    case ConditionSource::kForce: return gearpath_SIGNAL_FORCE;
+    default: return gearpath_SIGNAL_MEASURED;
+  }
+}
+
+std::uint32_t NonNegative(int v) noexcept { return v < 0 ? 0u : static_cast<std::uint32_t>(v); }
+
+}  // namespace
+
+OmittedIndicators FillConditionIndicators(std::string_view machine_id, const BlockResult& r,
+                                          const IndicatorNamesByGroup& group_names,
+                                          gearpath_ConditionIndicators& out) noexcept {
+  OmittedIndicators omitted;
+  CopyTruncated(out.machine_id, machine_id);
+  out.block_sequence = r.sequence;
+  out.block_t0_ns = r.t0_ns;
+  const BlockScore& score = r.score;
+  out.limit_z = score.limit_z;
+  out.clear_level = score.clear_level;
+  out.score = score.score;
+  CopyTruncated(out.top_indicator, score.indicator);
+  CopyTruncated(out.top_signal, score.signal);
+  CopyTruncated(out.top_shaft, score.shaft);
+  out.exceed_count = NonNegative(score.exceed_count);
+  out.window = NonNegative(score.window);
+  out.baseline_blocks_learned = NonNegative(score.baseline_blocks_learned);
+  out.baseline_blocks_needed = NonNegative(score.baseline_blocks_needed);
+
+  const std::uint32_t n = ResizeBounded(out.sets, r.condition.size(), gearpath_MAX_INDICATOR_SETS);
+  omitted.sets = static_cast<std::uint32_t>(r.condition.size() - n);
+  const std::size_t groups = group_names.size();
+  auto sets = dds::MutableView(out.sets);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const BlockConditionIndicators& c = r.condition[i];
+    gearpath_IndicatorSet& set = sets[i];
+    set.source = WireSignalSource(c.source);
+    CopyTruncated(set.signal, c.signal);
+    CopyTruncated(set.shaft, c.shaft);
+    set.shaft_hz = c.shaft_hz;
+    set.revolutions = c.revolutions;
+    set.score = c.score;
+    // The set's group is not stored: sets are signal-major over the groups.
+    const std::span<const std::string> names =
+        groups > 0 ? group_names[i % groups] : std::span<const std::string>();
+    const std::size_t count = std::min(c.value.size(), c.z.size());
+    const std::uint32_t m = ResizeBounded(set.values, count, gearpath_MAX_INDICATORS_PER_SET);
+    omitted.values += static_cast<std::uint32_t>(count - m);
+    auto values = dds::MutableView(set.values);
+    for (std::uint32_t k = 0; k < m; ++k) {
+      const std::string_view name = k < names.size() ? std::string_view(names[k]) : "";
+      if (!CopyTruncated(values[k].name, name)) ++omitted.names;
+      values[k].value = c.value[k];
+      values[k].z = c.z[k];
+    }
+  }
+  out.sets_omitted = omitted.sets;
+  out.values_omitted = omitted.values;
+  return omitted;
 }
 
 void FillStatus(const StatusFigures& figures, std::span<const std::string> machine_ids,

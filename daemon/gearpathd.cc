@@ -63,11 +63,13 @@ struct Gearpathd::Impl {
         dominant_topic(participant, first.config.topics.dominant_path),
         gear_topic(participant, first.config.topics.suspected_gear),
         indicators_topic(participant, first.config.topics.envelope_indicators),
+        condition_topic(participant, first.config.topics.condition_indicators),
         status_topic(participant, first.config.topics.status),
         block_reader(block_topic),
         dominant_writer(dominant_topic),
         gear_writer(gear_topic),
         indicators_writer(indicators_topic),
+        condition_writer(condition_topic),
         status_writer(status_topic),
         blocks_ready(block_reader),
         guard(participant),
@@ -103,11 +105,13 @@ struct Gearpathd::Impl {
   dds::Topic<gearpath_DominantPath> dominant_topic;
   dds::Topic<gearpath_SuspectedGear> gear_topic;
   dds::Topic<gearpath_EnvelopeIndicators> indicators_topic;
+  dds::Topic<gearpath_ConditionIndicators> condition_topic;
   dds::Topic<gearpath_Status> status_topic;
   dds::Reader<gearpath_AccelBlock> block_reader;
   dds::Writer<gearpath_DominantPath> dominant_writer;
   dds::Writer<gearpath_SuspectedGear> gear_writer;
   dds::Writer<gearpath_EnvelopeIndicators> indicators_writer;
+  dds::Writer<gearpath_ConditionIndicators> condition_writer;
   dds::Writer<gearpath_Status> status_writer;
   dds::ReadCondition blocks_ready;
   dds::GuardCondition guard;
@@ -143,6 +147,7 @@ struct Gearpathd::Impl {
   dds::Owned<gearpath_DominantPath> dominant_sample;
   dds::Owned<gearpath_SuspectedGear> gear_sample;
   dds::Owned<gearpath_EnvelopeIndicators> indicators_sample;
+  dds::Owned<gearpath_ConditionIndicators> condition_sample;
   dds::Owned<gearpath_Status> status_sample;
 };
 
@@ -210,6 +215,10 @@ void Gearpathd::Impl::LogThroughput() {
                         c.rejected - before.rejected,
                         reasons.empty() ? "" : " (" + reasons + ")", c.lost - before.lost,
                         c.latency_last_ms, c.latency_max_ms);
+    if (c.indicators_omitted > before.indicators_omitted) {
+      line += fmt::format(", {} condition indicator entries over the IDL bounds left out",
+                          c.indicators_omitted - before.indicators_omitted);
+    }
   }
   const std::uint64_t foreign = foreign_blocks - foreign_blocks_at_last_summary;
   spdlog::info("throughput over {:.0f} s: {}{}", seconds, line,
@@ -294,8 +303,23 @@ void Gearpathd::Impl::HandleBlock(const gearpath_AccelBlock& sample,
   FillDominantPath(m.id, r, *dominant_sample);
   FillSuspectedGear(m.id, r, *gear_sample);
   FillEnvelopeIndicators(m.id, r, *indicators_sample);
+  const OmittedIndicators omitted =
+      FillConditionIndicators(m.id, r, m.indicator_names, *condition_sample);
+  if (omitted.any()) {
+    // Counted always, said once per machine: the sample itself carries the counts.
+    if (c.indicators_omitted == 0) {
+      spdlog::warn("{}: block {}: ConditionIndicators exceeds the IDL bounds ({} sets > {}, "
+                   "{} values > {} per set, {} names > {} chars): left out and counted "
+                   "(sets_omitted, values_omitted); further blocks are counted silently",
+                   m.id, r.sequence, omitted.sets, gearpath_MAX_INDICATOR_SETS, omitted.values,
+                   gearpath_MAX_INDICATORS_PER_SET, omitted.names,
+                   gearpath_INDICATOR_NAME_LENGTH);
+    }
+    c.indicators_omitted += omitted.sets + omitted.values + omitted.names;
+  }
   for (Status st : {dominant_writer.Write(*dominant_sample), gear_writer.Write(*gear_sample),
-                    indicators_writer.Write(*indicators_sample)}) {
+                    indicators_writer.Write(*indicators_sample),
+                    condition_writer.Write(*condition_sample)}) {
     if (!st) {
       ++publish_failures;
       spdlog::error("{}: result of block {} not published: {}", m.id, r.sequence, st.error());

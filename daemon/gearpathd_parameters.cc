@@ -122,11 +122,22 @@ ParamSpec DdsSection() {
                       "gearpath/SuspectedGear", 1, 256),
                String("envelope_indicators", "Output: envelope fault indicators per block.",
                       "gearpath/EnvelopeIndicators", 1, 256),
+               String("condition_indicators",
+                      "Output: every condition indicator, its z-score and the block score per "
+                      "block.",
+                      "gearpath/ConditionIndicators", 1, 256),
                String("status", "Output: daemon status, periodically.", "gearpath/Status", 1,
                       256)})});
 }
 
 ParamSpec ChannelSpec() {
+  // Optional and absent by default: only an identity FRF set uses it, and there it is required.
+  ParamSpec gears = Array(
+      "gears",
+      "With `\"frf_set\": \"identity\"` (and only then; required there): the gears this sensor "
+      "sits nearest to, which localise a fault by mesh as an FRF path's gears do.",
+      String("gear", "Gear name.", nullptr, 1, kMaxIdLength), 1, 8);
+  gears.required = false;
   return Object(
       "channel", "One block channel, in block order.",
       {String("sensor", "Sensor id as carried by the AccelBlock channel, e.g. `A4`.", nullptr, 1,
@@ -135,8 +146,9 @@ ParamSpec ChannelSpec() {
             nullptr),
        Integer("frf_row",
                "Row (response channel) of the decoupled FRF matrix it measures (-1: the row "
-               "with the same sensor and axis).",
-               -1, 1023, -1)});
+               "with the same sensor and axis; must stay -1 with an identity FRF set).",
+               -1, 1023, -1),
+       std::move(gears)});
 }
 
 ParamSpec GearTrainSection() {
@@ -260,8 +272,10 @@ ParamSpec MachineSpec() {
               kMaxIdLength),
        String("description", "Free text for people.", ""),
        String("frf_set",
-              "Decoupled FRF set: a directory in the format of docs/frf_format.md, or "
-              "`builtin:table1` (the seed's Table-1 gearbox, computed through Eq. 22 at start).",
+              "Decoupled FRF set: a directory in the format of docs/frf_format.md, "
+              "`builtin:table1` (the seed's Table-1 gearbox, computed through Eq. 22 at start), "
+              "or `identity` (no FRFs yet: every channel is its own path, see \"Monitoring "
+              "before the hammer test\"; `./identity` names a directory).",
               nullptr, 1),
        Number("nominal_speed_hz",
               "Input shaft speed used when a block carries none (speed_hz = 0), Hz.", 0.0,

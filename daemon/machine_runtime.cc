@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "daemon/dds_bridge.h"
 #include "daemon/machine_setup_builder.h"
 
 namespace gearpath::daemon {
@@ -46,7 +47,8 @@ Result<MachineSet> BuildMachines(const DaemonConfig& config) {
                                processor.error())};
     }
     auto runtime = std::unique_ptr<MachineRuntime>(
-        new MachineRuntime{machine.id, std::move(summary), std::move(processor.value()), {}});
+        new MachineRuntime{machine.id, std::move(summary), std::move(processor.value()), {}, {}});
+    runtime->indicator_names = IndicatorNamesOf(runtime->processor);
     set.machines.emplace(machine.id, std::move(runtime));
   }
   return set;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct MachineRuntime {
   std::string summary;  // one line for the start-up log: FRF shape, band, paths, method
   BlockProcessor processor;
   BlockResult result;   // reused block after block (allocation-free once sized)
+  // Names of each shaft-rate group's condition indicators (views into `processor`, whose
+  // Impl does not move), for the ConditionIndicators topic.
+  std::vector<std::span<const std::string>> indicator_names;
 };
 
 // Everything one configuration needs to run: machines by id.
@@ -48,6 +52,9 @@ struct MachineCounters {
   double last_residual = 0.0;
   double latency_last_ms = 0.0;
   double latency_max_ms = 0.0;
+  // Condition indicators left off the wire by the IDL bounds (docs/topics.md): sets, values
+  // and truncated names, summed over blocks; warned about once per machine.
+  std::uint64_t indicators_omitted = 0;
 };
 
 }  // namespace gearpath::daemon

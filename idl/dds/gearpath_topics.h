@@ -49,6 +49,15 @@ struct TopicTraits<gearpath_EnvelopeIndicators> {
 };
 
 template <>
+struct TopicTraits<gearpath_ConditionIndicators> {
+  static const dds_topic_descriptor_t& Descriptor() noexcept {
+    return gearpath_ConditionIndicators_desc;
+  }
+  static constexpr std::string_view kName = "gearpath/ConditionIndicators";
+  static constexpr TopicClass kClass = TopicClass::kLatestResult;
+};
+
+template <>
 struct TopicTraits<gearpath_Status> {
   static const dds_topic_descriptor_t& Descriptor() noexcept { return gearpath_Status_desc; }
   static constexpr std::string_view kName = "gearpath/Status";

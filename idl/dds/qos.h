@@ -47,7 +47,8 @@ class Qos {
 // The three classes of gearpath topic.
 enum class TopicClass {
   kBlockStream,   // AccelBlock: every block matters, none may be lost silently
-  kLatestResult,  // DominantPath, SuspectedGear, EnvelopeIndicators: the current state matters
+  kLatestResult,  // DominantPath, SuspectedGear, EnvelopeIndicators, ConditionIndicators: the
+                  // current state matters
   kStatus,        // Status: periodic heartbeat whose absence must be noticed
 };
 

@@ -154,6 +154,69 @@ TEST(DaemonConfig, RejectsAnUnknownBuiltinFrfSet) {
                          "(known: builtin:table1)");
 }
 
+// `"frf_set": "identity"` with each channel's nearby gears (monitoring before the hammer test).
+json IdentityJson() {
+  json c = DefaultJson();
+  c["machines"][0]["frf_set"] = "identity";
+  c["machines"][0]["channels"] =
+      json::array({{{"sensor", "A1"}, {"axis", "x"}, {"gears", {"G1", "G2"}}},
+                   {{"sensor", "A2"}, {"axis", "y"}, {"gears", {"G3", "G4"}}}});
+  return c;
+}
+
+TEST(DaemonConfig, AcceptsAnIdentityFrfSetWithEveryChannelsGears) {
+  EXPECT_EQ(ErrorsOf(IdentityJson()), "");
+}
+
+TEST(DaemonConfig, AnIdentityFrfSetNeedsTheChannelsListed) {
+  json c = IdentityJson();
+  c["machines"][0]["channels"] = json::array();
+  EXPECT_EQ(ErrorsOf(c), "machines[0].channels: frf_set \"identity\" needs the block's channels "
+                         "listed, each with the gears its sensor sits near (channels[].gears)");
+}
+
+TEST(DaemonConfig, AnIdentityFrfSetNeedsEveryChannelsGearsAndNamesTheChannel) {
+  json c = IdentityJson();
+  c["machines"][0]["channels"][1].erase("gears");
+  EXPECT_EQ(ErrorsOf(c), "machines[0].channels[1].gears: required with frf_set \"identity\" "
+                         "(the gears this sensor sits nearest to)");
+  c = IdentityJson();
+  c["machines"][0]["channels"][1]["gears"] = json::array();
+  EXPECT_EQ(ErrorsOf(c), "machines[0].channels[1].gears: expected at least 1 items, got 0");
+}
+
+TEST(DaemonConfig, AnIdentityChannelsGearsMustExistOnceAndItsRowStaysImplicit) {
+  json c = IdentityJson();
+  c["machines"][0]["channels"][0]["gears"] = {"G1", "G9", "G1"};
+  c["machines"][0]["channels"][1]["frf_row"] = 1;
+  EXPECT_EQ(ErrorsOf(c),
+            "machines[0].channels[0].gears[1]: unknown gear \"G9\"\n"
+            "machines[0].channels[0].gears[2]: gear \"G1\" is named twice\n"
+            "machines[0].channels[1].frf_row: must be -1 with frf_set \"identity\" (channel i "
+            "is row i of the identity set)");
+}
+
+TEST(DaemonConfig, ChannelGearsWithAMeasuredFrfSetAreRefusedNotIgnored) {
+  json c = DefaultJson();
+  c["machines"][0]["channels"] =
+      json::array({{{"sensor", "p1"}, {"axis", "x"}, {"gears", {"G1"}}}});
+  EXPECT_EQ(ErrorsOf(c), "machines[0].channels[0].gears: only used with frf_set \"identity\" "
+                         "(an FRF set names its paths' gears; override them in paths[])");
+}
+
+TEST(DaemonConfig, TheConditionIndicatorsTopicNameIsConfigurableLikeTheOthers) {
+  auto parsed = ParseDaemonConfig(DefaultConfigText(), kEmbeddedOrigin);
+  ASSERT_TRUE(parsed.ok()) << parsed.error();
+  EXPECT_EQ(parsed->topics.condition_indicators, "gearpath/ConditionIndicators");
+  json c = DefaultJson();
+  c["dds"]["topics"]["condition_indicators"] = "plant7/ConditionIndicators";
+  auto renamed = ParseDaemonConfig(c.dump(), "test.json");
+  ASSERT_TRUE(renamed.ok()) << renamed.error();
+  EXPECT_EQ(renamed->topics.condition_indicators, "plant7/ConditionIndicators");
+  c["dds"]["topics"]["condition_indicators"] = "";
+  EXPECT_EQ(ErrorsOf(c), "dds.topics.condition_indicators: expected at least 1 characters, got 0");
+}
+
 TEST(DaemonConfig, RejectsMalformedJsonNamingTheFile) {
   auto parsed = ParseDaemonConfig("{\"daemon\": {", "broken.json");
   ASSERT_FALSE(parsed.ok());

@@ -66,7 +66,7 @@ BlockResult ExampleResult() {
   r.criterion = AnalysisOptions::DominantCriterion::kBandEnergy;
   r.analysis_band_lo_hz = 5.0;
   r.analysis_band_hi_hz = 3000.0;
-  r.paths = {{"B1x", "", 1.0, 0.25, 0.0}, {"B2x", "", 3.0, 0.75, 0.0}};
+  r.paths = {{"B1x", "", 1.0, 0.25, 0.0}, {"B2x", "", 3.0, 0.75, 0.6}};
   r.reconstructed_band = {1200.0, 250.0, 4, 3.5, true};
   BlockShaftIndicator shaft;
   shaft.shaft = "input";
@@ -74,6 +74,8 @@ BlockResult ExampleResult() {
   shaft.raw = 1.0;
   shaft.reconstructed = 3.0;
   shaft.enhancement_percent = 300.0;
+  shaft.raw_threshold = 0.9;
+  shaft.reconstructed_threshold = 2.5;
   shaft.raw_harmonics = {0.5, 0.2, 0.1, 0.1, 0.1};
   shaft.reconstructed_harmonics = {1.5, 0.6, 0.3, 0.3, 0.3};
   r.shafts = {shaft};
@@ -101,6 +103,19 @@ TEST(DdsBridge, DominantPathCarriesEverySharesAndTheBand) {
   EXPECT_DOUBLE_EQ(out->paths._buffer[0].share + out->paths._buffer[1].share, 1.0);
   EXPECT_EQ(out->band_hi_hz, 3000.0);
   EXPECT_EQ(out->criterion, gearpath_CRITERION_BAND_ENERGY);
+  EXPECT_EQ(out->paths._buffer[0].criterion, 0.0);
+  EXPECT_EQ(out->paths._buffer[1].criterion, 0.6);  // the value the path was ranked by
+}
+
+TEST(DdsBridge, EveryCoreCriterionHasItsOwnWireCriterion) {
+  BlockResult r = ExampleResult();
+  Owned<gearpath_DominantPath> out;
+  r.criterion = AnalysisOptions::DominantCriterion::kSidebandEnergy;
+  FillDominantPath("gb7", r, *out);
+  EXPECT_EQ(out->criterion, gearpath_CRITERION_SIDEBAND_ENERGY);
+  r.criterion = AnalysisOptions::DominantCriterion::kIndicator;
+  FillDominantPath("gb7", r, *out);
+  EXPECT_EQ(out->criterion, gearpath_CRITERION_INDICATOR);
 }
 
 TEST(DdsBridge, SuspectedGearNamesTheGearAndItsIndistinguishableCandidates) {
@@ -116,16 +131,25 @@ TEST(DdsBridge, SuspectedGearNamesTheGearAndItsIndistinguishableCandidates) {
   EXPECT_EQ(GetString(out->reason), r.verdict.reason.view());
 }
 
-TEST(DdsBridge, NoFaultAndLearningNameNoGear) {
+TEST(DdsBridge, NoFaultAndLearningNameNoGearAndLearningIsSaidSo) {
   BlockResult r = ExampleResult();
   for (FaultState state : {FaultState::kNoFault, FaultState::kLearning}) {
     r.verdict.state = state;
     Owned<gearpath_SuspectedGear> out;
     FillSuspectedGear("gb7", r, *out);
-    EXPECT_EQ(out->state, gearpath_NO_FAULT);
+    EXPECT_EQ(out->state, state == FaultState::kLearning ? gearpath_LEARNING : gearpath_NO_FAULT);
     EXPECT_EQ(GetString(out->gear_name), "");
     EXPECT_EQ(out->candidates._length, 0u);
   }
+}
+
+TEST(DdsBridge, FaultStateKeepsTheVersion1NumbersAndLearningComesLast) {
+  // Appending LEARNING must not renumber what subscribers already switch on.
+  EXPECT_EQ(static_cast<int>(gearpath_NO_FAULT), 0);
+  EXPECT_EQ(static_cast<int>(gearpath_SUSPECTED), 1);
+  EXPECT_EQ(static_cast<int>(gearpath_ALARM), 2);
+  EXPECT_EQ(static_cast<int>(gearpath_LEARNING), 3);
+  EXPECT_EQ(gearpath_CONTRACT_VERSION, 2u);
 }
 
 TEST(DdsBridge, EnvelopeIndicatorsCarryTheReconstructedBandAndEveryHarmonic) {
@@ -139,10 +163,118 @@ TEST(DdsBridge, EnvelopeIndicatorsCarryTheReconstructedBandAndEveryHarmonic) {
   const gearpath_ShaftIndicator& s = out->shafts._buffer[0];
   EXPECT_EQ(GetString(s.shaft_name), "input");
   EXPECT_EQ(s.enhancement_percent, 300.0);
+  EXPECT_EQ(s.raw_threshold, 0.9);
+  EXPECT_EQ(s.reconstructed_threshold, 2.5);
   double sum = 0.0;
   for (double h : s.reconstructed_harmonics) sum += h;
   EXPECT_DOUBLE_EQ(sum, s.reconstructed_indicator);  // the indicator is the harmonics' sum
   EXPECT_EQ(out->speed_source, gearpath_SPEED_OTHER);
+}
+
+// Two signals x two rate groups, signal-major, with the processor's per-group names.
+struct ConditionExample {
+  std::vector<std::string> group0{"fm0", "fm4", "sideband_G1-G2"};
+  std::vector<std::string> group1{"fm0", "fm4"};
+  std::vector<std::vector<double>> values{{1, 2, 3}, {4, 5}, {6, 7, 8}, {9, 10}};
+  std::vector<std::vector<double>> z{{0.1, 0.2, 0.3}, {0.4, 0.5}, {0.6, 0.7, 0.8}, {0.9, 1.0}};
+  IndicatorNamesByGroup names{group0, group1};
+  BlockResult result = ExampleResult();
+
+  ConditionExample() {
+    const ConditionSource sources[] = {ConditionSource::kMeasured, ConditionSource::kForce};
+    const std::string_view signals[] = {"A1/x", "B2x"};
+    const std::string_view shafts[] = {"input", "output"};
+    for (std::size_t i = 0; i < 4; ++i) {
+      BlockConditionIndicators c;
+      c.source = sources[i / 2];
+      c.index = static_cast<int>(i / 2);
+      c.signal = signals[i / 2];
+      c.shaft = shafts[i % 2];
+      c.shaft_hz = i % 2 == 0 ? 10.0 : 3.5;
+      c.revolutions = 20;
+      c.value = values[i];
+      c.z = z[i];
+      c.score = 0.1 * static_cast<double>(i);
+      result.condition.push_back(c);
+    }
+    BlockScore& s = result.score;
+    s.limit_z = 6.1;
+    s.clear_level = 0.7;
+    s.score = 0.42;
+    s.indicator = "fm4";
+    s.signal = "B2x";
+    s.shaft = "output";
+    s.exceed_count = 1;
+    s.window = 5;
+    s.baseline_blocks_learned = 20;
+    s.baseline_blocks_needed = 20;
+  }
+};
+
+TEST(DdsBridge, ConditionIndicatorsCarryEverySetWithItsGroupsNamesAndTheBlockScore) {
+  const ConditionExample ex;
+  Owned<gearpath_ConditionIndicators> out;
+  const OmittedIndicators omitted = FillConditionIndicators("gb7", ex.result, ex.names, *out);
+  EXPECT_FALSE(omitted.any());
+  EXPECT_EQ(GetString(out->machine_id), "gb7");
+  EXPECT_EQ(out->block_sequence, 9u);
+  EXPECT_EQ(out->block_t0_ns, 77);
+  EXPECT_EQ(out->limit_z, 6.1);
+  EXPECT_EQ(out->clear_level, 0.7);
+  EXPECT_EQ(out->score, 0.42);
+  EXPECT_EQ(GetString(out->top_indicator), "fm4");
+  EXPECT_EQ(GetString(out->top_signal), "B2x");
+  EXPECT_EQ(GetString(out->top_shaft), "output");
+  EXPECT_EQ(out->exceed_count, 1u);
+  EXPECT_EQ(out->window, 5u);
+  EXPECT_EQ(out->baseline_blocks_learned, 20u);
+  EXPECT_EQ(out->baseline_blocks_needed, 20u);
+  EXPECT_EQ(out->sets_omitted, 0u);
+  EXPECT_EQ(out->values_omitted, 0u);
+  ASSERT_EQ(out->sets._length, 4u);
+  const auto sets = View(out->sets);
+  EXPECT_EQ(sets[0].source, gearpath_SIGNAL_MEASURED);
+  EXPECT_EQ(sets[3].source, gearpath_SIGNAL_FORCE);
+  EXPECT_EQ(GetString(sets[2].signal), "B2x");
+  EXPECT_EQ(GetString(sets[3].shaft), "output");
+  EXPECT_EQ(sets[3].shaft_hz, 3.5);
+  EXPECT_EQ(sets[3].revolutions, 20);
+  EXPECT_DOUBLE_EQ(sets[3].score, 0.3);
+  // Set i has group i % 2: three names in group 0, two in group 1.
+  ASSERT_EQ(sets[2].values._length, 3u);
+  EXPECT_EQ(GetString(View(sets[2].values)[2].name), "sideband_G1-G2");
+  EXPECT_EQ(View(sets[2].values)[2].value, 8.0);
+  EXPECT_EQ(View(sets[2].values)[2].z, 0.8);
+  ASSERT_EQ(sets[1].values._length, 2u);
+  EXPECT_EQ(GetString(View(sets[1].values)[1].name), "fm4");
+  EXPECT_EQ(View(sets[1].values)[1].z, 0.5);
+}
+
+TEST(DdsBridge, ConditionIndicatorsOverTheIdlBoundsAreLeftOutAndCountedNeverRefused) {
+  ConditionExample ex;
+  // More sets than MAX_INDICATOR_SETS, one set with more values than MAX_INDICATORS_PER_SET,
+  // and a name longer than INDICATOR_NAME_LENGTH.
+  std::vector<double> many(gearpath_MAX_INDICATORS_PER_SET + 3, 1.0);
+  std::vector<std::string> long_names(many.size(), "x");
+  long_names[0] = std::string(gearpath_INDICATOR_NAME_LENGTH + 5, 'n');
+  const IndicatorNamesByGroup names{long_names, ex.group1};
+  const std::size_t total = gearpath_MAX_INDICATOR_SETS + 7;
+  while (ex.result.condition.size() < total) {
+    ex.result.condition.push_back(ex.result.condition[ex.result.condition.size() - 2]);
+  }
+  ex.result.condition[0].value = many;
+  ex.result.condition[0].z = many;
+  Owned<gearpath_ConditionIndicators> out;
+  const OmittedIndicators omitted = FillConditionIndicators("gb7", ex.result, names, *out);
+  EXPECT_EQ(omitted.sets, 7u);
+  EXPECT_EQ(omitted.values, 3u);
+  EXPECT_GE(omitted.names, 1u);
+  EXPECT_EQ(out->sets._length, gearpath_MAX_INDICATOR_SETS);
+  EXPECT_EQ(out->sets_omitted, 7u);
+  EXPECT_EQ(out->values_omitted, 3u);
+  EXPECT_EQ(out->sets._buffer[0].values._length, gearpath_MAX_INDICATORS_PER_SET);
+  EXPECT_EQ(GetString(out->sets._buffer[0].values._buffer[0].name).size(),
+            std::size_t{gearpath_INDICATOR_NAME_LENGTH});
 }
 
 TEST(DdsBridge, ResultSamplesAreReusedWhenTheNextResultIsSmaller) {
