@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <vector>
+
+#include "core/frf/identity_frf_set.h"
 #include "core/io/frf_set_io.h"
 
 namespace gearpath::daemon {
@@ -130,10 +133,42 @@ Result<FrfSet> LoadFrfSource(const std::string& source, const std::string& key_p
   return set;
 }
 
+Result<FrfSet> IdentityFrfSetFor(const MachineConfig& machine) {
+  const json& m = machine.settings;
+  const std::string& at = machine.key_path;
+  std::vector<ResponseChannel> channels;
+  std::vector<std::vector<std::string>> gears;
+  for (const json& c : m.at("channels")) {
+    channels.push_back({Get<std::string>(c, "sensor"), Get<std::string>(c, "axis")});
+    gears.push_back(c.contains("gears") ? Get<std::vector<std::string>>(c, "gears")
+                                        : std::vector<std::string>{});
+  }
+  const json& acq = m.at("acquisition");
+  const double fs = Get<double>(acq, "sample_rate_hz");
+  const auto n_min = Get<long>(acq, "min_samples_per_channel");
+  const auto n_max = Get<long>(acq, "max_samples_per_channel");
+  std::vector<double> grid;
+  if (n_max > n_min) grid.push_back(fs / static_cast<double>(n_max));
+  for (long k = 1; 2 * k <= n_min; ++k) {
+    grid.push_back(fs * static_cast<double>(k) / static_cast<double>(n_min));
+  }
+  if (grid.back() < fs / 2.0) grid.push_back(fs / 2.0);
+  const Eigen::VectorXd frequency_hz =
+      Eigen::Map<const Eigen::VectorXd>(grid.data(), static_cast<Eigen::Index>(grid.size()));
+  auto set = MakeIdentityFrfSet(channels, gears, frequency_hz);
+  if (!set) {
+    // Config-level rules (daemon_config.cc) catch these first; name the key all the same.
+    return Error{fmt::format("{}.channels: identity FRF set: {}", at, set.error())};
+  }
+  return set;
+}
+
 Result<MachineSetup> BuildMachineSetup(const MachineConfig& machine) {
   const json& m = machine.settings;
   const std::string& at = machine.key_path;
-  auto set = LoadFrfSource(machine.frf_set, at + ".frf_set");
+  const bool identity = machine.frf_set == kIdentityFrfSet;
+  auto set =
+      identity ? IdentityFrfSetFor(machine) : LoadFrfSource(machine.frf_set, at + ".frf_set");
   if (!set) return Error{set.error()};
 
   MachineSetup setup;

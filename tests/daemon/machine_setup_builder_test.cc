@@ -130,5 +130,41 @@ TEST_F(MachineSetupBuilder, RejectsAMissingFrfDirectoryNamingTheKey) {
   EXPECT_NE(setup.error().find("absent"), std::string::npos) << setup.error();
 }
 
+TEST_F(MachineSetupBuilder, AnIdentityFrfSetMakesEveryChannelAPathWithItsGearsOnTheBlockGrid) {
+  json& m = config_["machines"][0];
+  m["frf_set"] = "identity";
+  m["acquisition"]["min_samples_per_channel"] = 1024;
+  m["acquisition"]["max_samples_per_channel"] = 8192;
+  m["channels"] = json::array({{{"sensor", "A1"}, {"axis", "x"}, {"gears", {"G1", "G2"}}},
+                               {{"sensor", "A2"}, {"axis", "z"}, {"gears", {"G3", "G4"}}}});
+  auto setup = Build();
+  ASSERT_TRUE(setup.ok()) << setup.error();
+  const FrfSet& set = setup->frf_set;
+  EXPECT_EQ(set.decoupling, "identity");
+  ASSERT_EQ(set.paths.size(), 2u);
+  EXPECT_EQ(set.paths[0].name, "A1/x");
+  EXPECT_EQ(set.paths[1].name, "A2/z");
+  EXPECT_EQ(set.paths[1].gears, (std::vector<std::string>{"G3", "G4"}));
+  ASSERT_EQ(setup->block_channels.size(), 2u);
+  EXPECT_EQ(setup->block_channels[1].sensor, "A2");
+  // Grid: the first bin of the longest block, then the shortest block's bins up to fs / 2.
+  const Eigen::VectorXd& f = set.decoupled.frequency_hz;
+  ASSERT_EQ(f.size(), 1 + 512);
+  EXPECT_DOUBLE_EQ(f[0], 8000.0 / 8192);
+  EXPECT_DOUBLE_EQ(f[1], 8000.0 / 1024);
+  EXPECT_DOUBLE_EQ(f[f.size() - 1], 4000.0);
+  EXPECT_TRUE(set.decoupled.at[7].isIdentity());
+}
+
+TEST_F(MachineSetupBuilder, AnIdentityFrfSetIsNotLookedForOnDisk) {
+  // "identity" is a keyword, not a directory: no file is read, so none has to exist.
+  config_["machines"][0]["frf_set"] = "identity";
+  config_["machines"][0]["channels"] =
+      json::array({{{"sensor", "A1"}, {"axis", "x"}, {"gears", {"G1"}}}});
+  auto setup = Build();
+  ASSERT_TRUE(setup.ok()) << setup.error();
+  EXPECT_EQ(setup->frf_set.paths.size(), 1u);
+}
+
 }  // namespace
 }  // namespace gearpath::daemon
