@@ -65,8 +65,9 @@ void FormatRow(std::string& out, const AggregateRow& r) {
   const std::string first =
       r.first_alarm_count > 0 ? fmt::format("{:.2f}", r.mean_first_alarm()) : "-";
   const std::string flips = r.scored > 0 ? fmt::format("{:.2f}", r.mean_flips()) : "-";
-  out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6}", r.label, r.faulty,
-                     r.healthy, detect, right, fa, first, flips);
+  const std::string learning = r.blocks > 0 ? Percent(r.learning_rate()) : "-";
+  out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7}", r.label,
+                     r.faulty, r.healthy, detect, right, fa, first, flips, learning);
   if (r.errors > 0) out += fmt::format("  ({} errors)", r.errors);
   out += "\n";
 }
@@ -84,6 +85,8 @@ nlohmann::json RowJson(const AggregateRow& r) {
           {"false_alarm_rate_per_block", r.false_alarm_rate()},
           {"mean_first_alarm_block", r.mean_first_alarm()},
           {"mean_flips", r.mean_flips()},
+          {"learning_blocks", r.learning_blocks},
+          {"evaluation_blocks", r.blocks},
           {"errors", r.errors}};
 }
 
@@ -97,6 +100,8 @@ void AggregateRow::Add(const ScenarioOutcome& o) {
   const ScenarioScore& s = o.score;
   ++scored;
   flips_sum += s.flips;
+  blocks += s.blocks;
+  learning_blocks += s.learning_blocks;
   if (s.faulty) {
     ++faulty;
     detected += s.detected ? 1 : 0;
@@ -148,8 +153,8 @@ std::string FormatSummary(const std::vector<PartitionSummary>& summary) {
                        p.name == "held_out" ? "HELD-OUT" : "tuning", families,
                        p.overall.scored + p.overall.errors, p.overall.faulty, p.overall.healthy,
                        p.overall.errors > 0 ? fmt::format(", {} errors", p.overall.errors) : "");
-    out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6}\n", "group", "faulty",
-                       "health", "detect", "right", "FA/blk", "first", "flips");
+    out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7}\n", "group",
+                       "faulty", "health", "detect", "right", "FA/blk", "first", "flips", "learn");
     FormatRow(out, p.overall);
     for (const AggregateTable& t : p.tables) {
       out += fmt::format("-- by {}\n", t.dimension);
@@ -222,6 +227,7 @@ std::string ToJson(std::string_view matrix, const std::vector<ScenarioOutcome>& 
       const ScenarioScore& sc = o.score;
       j["score"] = {{"faulty", sc.faulty},
                     {"alarmed_blocks", sc.alarmed_blocks},
+                    {"learning_blocks", sc.learning_blocks},
                     {"right_gear_blocks", sc.right_gear_blocks},
                     {"detected", sc.detected},
                     {"right_gear", sc.right_gear},

@@ -10,7 +10,8 @@
 //                evaluation blocks of healthy scenarios,
 //   first alarm = mean 1-based index of the first alarmed evaluation block, over the faulty
 //                scenarios that alarmed at all,
-//   flips = mean number of state changes within the evaluation blocks, over all scenarios.
+//   flips = mean number of state changes within the evaluation blocks, over all scenarios,
+//   learning = evaluation blocks still learning / all evaluation blocks (should be 0).
 // Scenarios that failed to run are counted as errors and excluded from every rate.
 // JSON schema: docs/evaluation.md.
 #pragma once
@@ -34,6 +35,8 @@ struct AggregateRow {
   int first_alarm_sum = 0;
   int first_alarm_count = 0;
   int flips_sum = 0;
+  int learning_blocks = 0;
+  int blocks = 0;
   int scored = 0;
   int errors = 0;
 
@@ -47,6 +50,7 @@ struct AggregateRow {
     return first_alarm_count > 0 ? double(first_alarm_sum) / first_alarm_count : 0.0;
   }
   double mean_flips() const { return scored > 0 ? double(flips_sum) / scored : 0.0; }
+  double learning_rate() const { return blocks > 0 ? double(learning_blocks) / blocks : 0.0; }
 };
 
 struct AggregateTable {

@@ -188,6 +188,7 @@ ScenarioScore ScoreVerdicts(std::span<const BlockVerdictRecord> evaluation,
   s.blocks = static_cast<int>(evaluation.size());
   for (std::size_t i = 0; i < evaluation.size(); ++i) {
     const BlockVerdictRecord& v = evaluation[i];
+    if (v.state == FaultState::kLearning) ++s.learning_blocks;
     if (Alarmed(v.state)) {
       ++s.alarmed_blocks;
       if (s.first_alarm_block == 0) s.first_alarm_block = static_cast<int>(i) + 1;

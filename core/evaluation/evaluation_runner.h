@@ -25,7 +25,9 @@
 //    The scenario's gear is right when a majority of its evaluation blocks is;
 //  - first alarm: 1-based index of the first alarmed evaluation block, 0 = none;
 //  - flips: number of state changes between consecutive evaluation blocks;
-//  - false alarms (healthy scenarios): the number of alarmed evaluation blocks.
+//  - false alarms (healthy scenarios): the number of alarmed evaluation blocks;
+//  - learning: evaluation blocks still in kLearning (the pipeline wanted a longer baseline
+//    than the 20 blocks it got; they count as not alarmed).
 #pragma once
 
 #include <cstdint>
@@ -63,6 +65,7 @@ struct ScenarioScore {
   bool faulty = false;
   int blocks = 0;
   int alarmed_blocks = 0;
+  int learning_blocks = 0;
   int right_gear_blocks = 0;
   bool detected = false;
   bool right_gear = false;

@@ -85,6 +85,7 @@ TEST(Scoring, HealthyScenariosCountFalseAlarmBlocks) {
   const ScenarioScore s = ScoreVerdicts(seq, "", t1);
   EXPECT_FALSE(s.faulty);
   EXPECT_EQ(s.false_alarm_blocks, 1);  // learning is not an alarm
+  EXPECT_EQ(s.learning_blocks, 1);
   EXPECT_FALSE(s.detected);
   EXPECT_FALSE(s.right_gear);
   EXPECT_EQ(s.flips, 3);

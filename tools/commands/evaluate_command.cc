@@ -1,0 +1,147 @@
+// `gearpath evaluate`: the evaluation matrix (core/evaluation) run offline through the
+// daemon's per-block engine, printed as tables per fault kind, gear, speed band, noise,
+// family...; optionally written as JSON (docs/evaluation.md). The held-out family
+// (modal_housing) is excluded by default, reported separately when included, and must never
+// be used for tuning.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/evaluation/evaluation_report.h"
+#include "core/evaluation/evaluation_runner.h"
+#include "core/evaluation/scenario_matrix.h"
+#include "tools/commands/commands.h"
+
+namespace gearpath::tools {
+namespace {
+
+struct EvaluateArgs {
+  std::string matrix = "quick";
+  std::vector<std::string> families;
+  bool held_out_only = false;
+  bool include_held_out = false;
+  bool exclude_held_out = false;
+  std::string json_path;
+  int threads = 0;
+  bool list = false;
+  bool quiet = false;
+};
+
+int RunEvaluate(const EvaluateArgs& args) {
+  const std::optional<MatrixSize> size = ParseMatrixSize(args.matrix);
+  if (!size) {
+    std::fprintf(stderr, "gearpath evaluate: --matrix must be quick or full, got '%s'\n",
+                 args.matrix.c_str());
+    return kExitBadInput;
+  }
+  MatrixFilter filter;
+  filter.held_out = args.held_out_only      ? HeldOutSelection::kOnly
+                    : args.include_held_out ? HeldOutSelection::kInclude
+                                            : HeldOutSelection::kExclude;
+  for (const std::string& name : args.families) {
+    const std::optional<PlantFamily> f = ParsePlantFamily(name);
+    if (!f) {
+      std::fprintf(stderr,
+                   "gearpath evaluate: --family '%s' is not a family (lumped_perturbed, "
+                   "lumped_torsional, modal_housing)\n",
+                   name.c_str());
+      return kExitBadInput;
+    }
+    if (IsHeldOut(*f) && filter.held_out == HeldOutSelection::kExclude) {
+      std::fprintf(stderr,
+                   "gearpath evaluate: --family %s is the held-out family, excluded by default; "
+                   "add --held-out-only (or --include-held-out) to run it, never to tune on it\n",
+                   name.c_str());
+      return kExitBadInput;
+    }
+    filter.families.push_back(*f);
+  }
+  const std::vector<Scenario> scenarios = EnumerateScenarios(*size, filter);
+  if (scenarios.empty()) {
+    std::fprintf(stderr, "gearpath evaluate: the selection holds no scenario\n");
+    return kExitBadInput;
+  }
+  if (args.list) {
+    for (const Scenario& s : scenarios) {
+      std::printf("%zu %s seed=%llu\n", s.index, s.Key().c_str(),
+                  static_cast<unsigned long long>(s.seed));
+    }
+    return kExitOk;
+  }
+  const int threads = args.threads > 0
+                          ? args.threads
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  std::fprintf(stderr, "gearpath evaluate: %zu scenarios (%s matrix) on %d threads\n",
+               scenarios.size(), args.matrix.c_str(), threads);
+  const auto start = std::chrono::steady_clock::now();
+  const bool quiet = args.quiet;
+  const std::vector<ScenarioOutcome> outcomes = RunScenarios(
+      scenarios, RunnerOptions{}, threads,
+      [quiet, &start](std::size_t done, std::size_t total, const ScenarioOutcome& o) {
+        if (!o.error.empty()) {
+          std::fprintf(stderr, "  error in %s: %s\n", o.scenario.Key().c_str(), o.error.c_str());
+        }
+        if (quiet || (done % 25 != 0 && done != total)) return;
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::fprintf(stderr, "  [%zu/%zu] %.0f s elapsed\n", done, total, elapsed);
+      });
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::vector<PartitionSummary> summary = Summarise(outcomes);
+  std::printf("gearpath evaluate: %s matrix, %zu scenarios, %.0f s\n", args.matrix.c_str(),
+              scenarios.size(), elapsed);
+  std::printf("columns: faulty / healthy scenarios; detection and right-gear rate over faulty "
+              "scenarios (majority of %d evaluation blocks after %d baseline blocks); false "
+              "alarms per healthy evaluation block; mean first alarmed block; mean state flips; "
+              "evaluation blocks still learning\n\n",
+              kEvaluationBlocks, kBaselineBlocks);
+  std::fputs(FormatSummary(summary).c_str(), stdout);
+  if (!args.json_path.empty()) {
+    std::ofstream out(args.json_path);
+    out << ToJson(args.matrix, outcomes, summary) << "\n";
+    if (!out) {
+      std::fprintf(stderr, "gearpath evaluate: cannot write --json file '%s'\n",
+                   args.json_path.c_str());
+      return kExitFailure;
+    }
+  }
+  for (const ScenarioOutcome& o : outcomes) {
+    if (!o.error.empty()) return kExitFailure;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddEvaluateCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<EvaluateArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "evaluate",
+      "Run the evaluation matrix (plants of independent physics, fault models, speeds, noise) "
+      "through the block processor and print detection, right-gear and false-alarm rates");
+  cmd->add_option("--matrix", args->matrix, "quick or full")->capture_default_str();
+  cmd->add_option("--family", args->families,
+                  "only these families (lumped_perturbed, lumped_torsional, modal_housing)");
+  auto* only = cmd->add_flag("--held-out-only", args->held_out_only,
+                             "run and print only the held-out family (modal_housing)");
+  auto* include = cmd->add_flag("--include-held-out", args->include_held_out,
+                                "run the held-out family too (reported separately)");
+  auto* exclude = cmd->add_flag("--exclude-held-out", args->exclude_held_out,
+                                "leave the held-out family out (the default; for tuning runs)");
+  only->excludes(include)->excludes(exclude);
+  include->excludes(exclude);
+  cmd->add_option("--json", args->json_path, "write every scenario's verdicts and the summary");
+  cmd->add_option("--threads", args->threads, "worker threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--list", args->list, "list the selected scenarios and their seeds, run nothing");
+  cmd->add_flag("--quiet", args->quiet, "no progress lines on stderr");
+  cmd->callback([args, &exit_code] { exit_code = RunEvaluate(*args); });
+}
+
+}  // namespace gearpath::tools
