@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "core/dsp/cubic_interpolation.h"
 #include "core/dsp/input_checks.h"
 
 namespace gearpath {
@@ -18,24 +19,6 @@ constexpr std::size_t kMaxPoints = std::size_t{1} << 20;
 // Index of the plan of `points` (a power of two >= kMinPoints) in the plan vectors.
 std::size_t PlanIndex(std::size_t points) noexcept {
   return static_cast<std::size_t>(std::countr_zero(points) - std::countr_zero(kMinPoints));
-}
-
-// 4-point cubic Lagrange interpolation of x at the (fractional) sample position u, 0 <= u <=
-// n - 1. The stencil is the four samples around u, moved inwards at the block ends.
-double InterpolateCubic(const double* x, std::size_t n, double u) noexcept {
-  const auto i = static_cast<std::size_t>(u);  // floor, u >= 0
-  std::size_t first = i == 0 ? 0 : i - 1;
-  if (first + 3 >= n) first = n - 4;
-  const double t = u - static_cast<double>(first);  // position in stencil units, 0..3
-  const double a = t - 1.0;
-  const double b = t - 2.0;
-  const double c = t - 3.0;
-  const double w0 = -a * b * c / 6.0;
-  const double w1 = t * b * c / 2.0;
-  const double w2 = -t * a * c / 2.0;
-  const double w3 = t * a * b / 6.0;
-  const double* s = x + first;
-  return w0 * s[0] + w1 * s[1] + w2 * s[2] + w3 * s[3];
 }
 
 }  // namespace
