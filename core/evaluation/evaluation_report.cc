@@ -66,8 +66,8 @@ void FormatRow(std::string& out, const AggregateRow& r) {
       r.first_alarm_count > 0 ? fmt::format("{:.2f}", r.mean_first_alarm()) : "-";
   const std::string flips = r.scored > 0 ? fmt::format("{:.2f}", r.mean_flips()) : "-";
   const std::string learning = r.blocks > 0 ? Percent(r.learning_rate()) : "-";
-  out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7}", r.label,
-                     r.faulty, r.healthy, detect, right, fa, first, flips, learning);
+  out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7}", r.label, r.faulty,
+                     r.healthy, detect, right, fa, first, flips, learning);
   if (r.errors > 0) out += fmt::format("  ({} errors)", r.errors);
   out += "\n";
 }

@@ -67,8 +67,8 @@ struct PartitionSummary {
 
 // Dimensions tabulated, in print order.
 inline constexpr std::string_view kReportDimensions[] = {
-    "fault", "gear", "fault_gear", "speed_band", "speed_rpm", "noise", "family",
-    "variant", "channels", "unmodelled"};
+    "fault", "gear",   "fault_gear", "speed_band", "speed_rpm",
+    "noise", "family", "variant",    "channels",   "unmodelled"};
 
 // The label of an outcome along a dimension (e.g. "te_pulse", "G3", "nominal", "5%").
 std::string DimensionLabel(const Scenario& scenario, std::string_view dimension);

@@ -168,8 +168,7 @@ bool VerdictNamesGear(const BlockVerdictRecord& verdict, const std::string& true
                       const TrainLayout& layout) {
   if (!Alarmed(verdict.state) || true_gear.empty()) return false;
   std::vector<std::string> named = verdict.candidates;
-  if (!verdict.gear.empty() &&
-      std::find(named.begin(), named.end(), verdict.gear) == named.end()) {
+  if (!verdict.gear.empty() && std::find(named.begin(), named.end(), verdict.gear) == named.end()) {
     named.push_back(verdict.gear);
   }
   if (std::find(named.begin(), named.end(), true_gear) == named.end()) return false;

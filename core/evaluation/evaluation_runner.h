@@ -80,7 +80,7 @@ struct ScenarioOutcome {
   std::vector<BlockVerdictRecord> verdicts;  // the evaluation blocks
   ScenarioScore score;
   double severity_scale = 1.0;  // factor asked of the default fault depths (before caps)
-  PlantFaultSeverity severity;   // the depths actually used
+  PlantFaultSeverity severity;  // the depths actually used
   double rms_change = 0.0;      // achieved max-channel raw RMS change (signed), faulty scenarios
   double seconds = 0.0;
 };

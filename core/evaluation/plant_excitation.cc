@@ -60,8 +60,8 @@ Result<PlantExcitation> PlantExcitation::Create(const GearTrain& train,
   const PlantExcitationConfig& c = config;
   const PlantFaultSeverity& sv = c.severity;
   if (c.mesh_harmonics < 1) {
-    return Error{fmt::format("plant excitation: mesh_harmonics must be >= 1, got {}",
-                             c.mesh_harmonics)};
+    return Error{
+        fmt::format("plant excitation: mesh_harmonics must be >= 1, got {}", c.mesh_harmonics)};
   }
   if (!(c.mesh_fundamental_m > 0.0) || !std::isfinite(c.mesh_fundamental_m)) {
     return Error{fmt::format("plant excitation: mesh_fundamental_m must be finite and > 0, got {}",
@@ -85,8 +85,9 @@ Result<PlantExcitation> PlantExcitation::Create(const GearTrain& train,
   }
   if (!(sv.pulse_length_periods > 0.0) || !(sv.am_length_periods > 0.0) ||
       !(sv.dip_length_lo > 0.0) || !(sv.dip_length_hi >= sv.dip_length_lo)) {
-    return Error{"plant excitation: window lengths must be > 0 and dip_length_hi >= "
-                 "dip_length_lo"};
+    return Error{
+        "plant excitation: window lengths must be > 0 and dip_length_hi >= "
+        "dip_length_lo"};
   }
 
   PlantExcitation e;
@@ -162,9 +163,9 @@ double PlantExcitation::MeshContent(const Stage& st, double input_revs) const no
   }
   const double rd = st.order_driver * input_revs;
   const double rn = st.order_driven * input_revs;
-  const double modulation = 1.0 +
-                            st.mu_driver * std::cos(kTwoPi * (rd - std::floor(rd)) + st.psi_driver) +
-                            st.mu_driven * std::cos(kTwoPi * (rn - std::floor(rn)) + st.psi_driven);
+  const double modulation =
+      1.0 + st.mu_driver * std::cos(kTwoPi * (rd - std::floor(rd)) + st.psi_driver) +
+      st.mu_driven * std::cos(kTwoPi * (rn - std::floor(rn)) + st.psi_driven);
   return modulation * mesh;
 }
 

@@ -51,14 +51,14 @@ inline constexpr PlantFaultKind kAllPlantFaultKinds[] = {
     PlantFaultKind::kWearDip, PlantFaultKind::kCombined};
 
 struct PlantFaultSeverity {
-  double pulse_depth_m = 0.6e-6;     // d_p
+  double pulse_depth_m = 0.6e-6;      // d_p
   double pulse_length_periods = 1.0;  // L_p, tooth-mesh periods
   double pulse_taper = 0.08;          // fraction of L_p in each ramp (sharp edges)
   double am_depth = 0.35;             // d_a, fraction of the mesh content lost
   double am_length_periods = 1.0;     // L_a
   double am_taper = 0.2;
-  double dip_depth_m = 1.0e-6;     // d_w
-  double dip_length_lo = 2.0;      // L_w drawn in [lo, hi] mesh periods
+  double dip_depth_m = 1.0e-6;  // d_w
+  double dip_length_lo = 2.0;   // L_w drawn in [lo, hi] mesh periods
   double dip_length_hi = 3.0;
   // Physical caps ScaleSeverity never exceeds (a missing tooth cannot deflect the mesh by more
   // than a few times its loaded deflection; the mesh cannot lose more than most of its load).
@@ -81,7 +81,8 @@ class PlantExcitation {
  public:
   // Fails (naming the argument) on an invalid train, an unknown faulty gear, or parameters out
   // of range (negative depths, am_depth outside [0, 1], window longer than a revolution).
-  static Result<PlantExcitation> Create(const GearTrain& train, const PlantExcitationConfig& config);
+  static Result<PlantExcitation> Create(const GearTrain& train,
+                                        const PlantExcitationConfig& config);
 
   const PlantExcitationConfig& config() const noexcept { return config_; }
   int stage_count() const noexcept { return static_cast<int>(stages_.size()); }

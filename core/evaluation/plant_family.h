@@ -15,7 +15,8 @@
 //                    model at all: the housing is a random modal model, 6..12 modes between
 //                    300 Hz and 3.5 kHz (log-uniform), damping 1..4 %, modal masses 5..30 kg,
 //                    random mode shapes at the bearing seats p1..pN+1 and the point m1:
-//                      H_true(f)[c, b] = sum_r phi_r(c) phi_r(b) (-w^2) / (w_r^2 - w^2 + 2 j z_r w_r w).
+//                      H_true(f)[c, b] = sum_r phi_r(c) phi_r(b) (-w^2)
+//                                        / (w_r^2 - w^2 + 2 j z_r w_r w).
 //                    Bearing forces come straight from the mesh excitation: stage s pushes with
 //                    k_s R_s(f) TE_s(f) (k_s: the nominal mesh stiffness x U(0.8, 1.2); R_s a
 //                    single-DOF rotor resonance in 1.2..3 kHz, 5 % damping) on bearing s with
@@ -70,8 +71,8 @@ struct PlantSpec {
 struct Plant {
   PlantSpec spec;
   GearTrain train;
-  std::vector<ChannelInfo> channels;  // block channels, FRF row order
-  FrfSet model_frf;                   // what the daemon is given
+  std::vector<ChannelInfo> channels;              // block channels, FRF row order
+  FrfSet model_frf;                               // what the daemon is given
   std::shared_ptr<const PlantDynamics> dynamics;  // the truth
 };
 

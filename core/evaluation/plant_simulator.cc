@@ -12,7 +12,7 @@ namespace gearpath {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr std::uint64_t kSourceStream = 201;        // unmodelled sources, fixed per run
+constexpr std::uint64_t kSourceStream = 201;         // unmodelled sources, fixed per run
 constexpr std::uint64_t kNoiseStreamBase = 1 << 20;  // + block index
 constexpr std::uint64_t kBurstStreamBase = 1 << 21;  // + block index
 // Irrational multiples of the pump rate for the three tones.
@@ -41,12 +41,12 @@ Result<PlantSimulator> PlantSimulator::Create(std::shared_ptr<const PlantDynamic
                              c.input_speed_hz)};
   }
   if (c.block_length < 16) {
-    return Error{fmt::format("plant simulator: block_length must be >= 16, got {}",
-                             c.block_length)};
+    return Error{
+        fmt::format("plant simulator: block_length must be >= 16, got {}", c.block_length)};
   }
   if (c.segment_factor < 2) {
-    return Error{fmt::format("plant simulator: segment_factor must be >= 2, got {}",
-                             c.segment_factor)};
+    return Error{
+        fmt::format("plant simulator: segment_factor must be >= 2, got {}", c.segment_factor)};
   }
   if (c.te_oversampling < 1 || c.te_oversampling > 16) {
     return Error{fmt::format("plant simulator: te_oversampling must be in [1, 16], got {}",
@@ -89,7 +89,7 @@ Result<PlantSimulator> PlantSimulator::Create(std::shared_ptr<const PlantDynamic
   sim.transfer_ = std::move(t).value();
 
   const double healthy_top = sim.excitation_.HealthyBandwidthOrder() * c.input_speed_hz *
-                            (1.0 + (c.speed_drift ? c.drift_relative : 0.0));
+                             (1.0 + (c.speed_drift ? c.drift_relative : 0.0));
   if (healthy_top >= 0.5 * c.sample_rate_hz) {
     return Error{fmt::format(
         "plant simulator: the healthy TE reaches {:.0f} Hz at input_speed_hz {}, over half the "
@@ -155,8 +155,8 @@ void PlantSimulator::NoiseFree(std::int64_t first_sample, bool fault_on, Eigen::
   for (int st = 0; st < stages; ++st) {
     std::span<double> in = forward_->real_in();
     for (std::size_t i = 0; i < s; ++i) {
-      in[i] = excitation_.Te(st, InputRevs(static_cast<double>(start + static_cast<std::int64_t>(i))),
-                             false);
+      in[i] = excitation_.Te(
+          st, InputRevs(static_cast<double>(start + static_cast<std::int64_t>(i))), false);
     }
     forward_->Execute();
     const std::span<std::complex<double>> spec = forward_->complex_out();
@@ -209,8 +209,7 @@ void PlantSimulator::AddUnmodelled(std::int64_t first_sample, Eigen::MatrixXd& s
           1.0 + kToneModulation * std::cos(kTwoPi * (pump_cycles - std::floor(pump_cycles)));
       for (std::size_t k = 0; k < tone_hz_.size(); ++k) {
         const double cycles = tone_hz_[k] * t;
-        const double v =
-            am * std::cos(kTwoPi * (cycles - std::floor(cycles)) + tone_phase_[k]);
+        const double v = am * std::cos(kTwoPi * (cycles - std::floor(cycles)) + tone_phase_[k]);
         for (Eigen::Index ch = 0; ch < nc; ++ch) {
           signal(i, ch) += config_.tone_level * reference_rms_[ch] *
                            tone_gain_(ch, static_cast<Eigen::Index>(k)) * v;

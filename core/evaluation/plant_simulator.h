@@ -12,11 +12,11 @@
 //     stays under fs / 2) and sampled at fs. The fault's deviation from it is sampled
 //     te_oversampling (4) times faster and only its bins up to fs / 2 are kept: an ideal
 //     anti-aliasing filter (a sharp pulse has content far above fs / 2, which sampling at fs
-//     would fold onto frequencies that are no harmonic of the faulty shaft). The DC and Nyquist bins are dropped (a constant TE is a static preload an
-//     accelerometer does not see). The FFT makes the convolution circular: the wrap-around
-//     transient sits at the start of the segment, and only the last B samples are kept; this
-//     is exact as long as the plant's impulse response dies out within S - B samples (modes
-//     above ~50 Hz with >= 1 % damping do, at S - B = 1 s).
+//     would fold onto frequencies that are no harmonic of the faulty shaft). The DC and Nyquist
+//     bins are dropped (a constant TE is a static preload an accelerometer does not see). The FFT
+//     makes the convolution circular: the wrap-around transient sits at the start of the segment,
+//     and only the last B samples are kept; this is exact as long as the plant's impulse response
+//     dies out within S - B samples (modes above ~50 Hz with >= 1 % damping do, at S - B = 1 s).
 //  3. Noise: white Gaussian, std = noise_relative x the channel's reference RMS (the RMS of
 //     the noise-free HEALTHY first block, fixed for the whole run, so a fault does not change
 //     the noise level).
@@ -62,9 +62,9 @@ struct PlantSimulatorConfig {
   std::string machine_id = "plant";
   double sample_rate_hz = 8000.0;
   std::uint32_t block_length = 8192;
-  std::uint32_t segment_factor = 2;  // S = factor x block_length, >= 2
+  std::uint32_t segment_factor = 2;   // S = factor x block_length, >= 2
   std::uint32_t te_oversampling = 4;  // TE sampled at this multiple of fs, >= 1
-  double input_speed_hz = 10.0;      // mean input-shaft speed, reported by every block
+  double input_speed_hz = 10.0;       // mean input-shaft speed, reported by every block
   double noise_relative = 0.05;
   bool tones = false;
   bool bursts = false;
@@ -83,7 +83,8 @@ class PlantSimulator {
   // Validates the config (messages name the field) and computes the transfer on the segment's
   // grid and the reference RMS.
   static Result<PlantSimulator> Create(std::shared_ptr<const PlantDynamics> dynamics,
-                                       std::vector<ChannelInfo> channels, PlantExcitation excitation,
+                                       std::vector<ChannelInfo> channels,
+                                       PlantExcitation excitation,
                                        const PlantSimulatorConfig& config);
 
   const PlantSimulatorConfig& config() const noexcept { return config_; }

@@ -96,11 +96,12 @@ int RunEvaluate(const EvaluateArgs& args) {
   const std::vector<PartitionSummary> summary = Summarise(outcomes);
   std::printf("gearpath evaluate: %s matrix, %zu scenarios, %.0f s\n", args.matrix.c_str(),
               scenarios.size(), elapsed);
-  std::printf("columns: faulty / healthy scenarios; detection and right-gear rate over faulty "
-              "scenarios (majority of %d evaluation blocks after %d baseline blocks); false "
-              "alarms per healthy evaluation block; mean first alarmed block; mean state flips; "
-              "evaluation blocks still learning\n\n",
-              kEvaluationBlocks, kBaselineBlocks);
+  std::printf(
+      "columns: faulty / healthy scenarios; detection and right-gear rate over faulty "
+      "scenarios (majority of %d evaluation blocks after %d baseline blocks); false "
+      "alarms per healthy evaluation block; mean first alarmed block; mean state flips; "
+      "evaluation blocks still learning\n\n",
+      kEvaluationBlocks, kBaselineBlocks);
   std::fputs(FormatSummary(summary).c_str(), stdout);
   if (!args.json_path.empty()) {
     std::ofstream out(args.json_path);

@@ -32,7 +32,7 @@ TEST(PlantExcitation, NamesRoundTrip) {
 TEST(PlantExcitation, KinematicsFollowTheToothCounts) {
   const PlantExcitation e = Make(PlantFaultKind::kNone, "");
   ASSERT_EQ(e.stage_count(), 2);
-  EXPECT_DOUBLE_EQ(e.mesh_order(0), 28.0);                // G1 on the input shaft
+  EXPECT_DOUBLE_EQ(e.mesh_order(0), 28.0);                  // G1 on the input shaft
   EXPECT_NEAR(e.mesh_order(1), 34.0 * 28.0 / 40.0, 1e-12);  // G3 at 0.7 x input
   EXPECT_NEAR(e.shaft_orders()[2], 0.7, 1e-12);
   const PlantExcitation d = Make(PlantFaultKind::kNone, "", 11, TrainVariant::kDistinct);

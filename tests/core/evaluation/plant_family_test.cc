@@ -54,8 +54,8 @@ TEST(PlantFamily, LumpedPlantGivesTheDaemonTheNominalModelNotItself) {
   const GearTrain train = GearTrain::Table1();
   Result<LumpedGearboxModel> nominal = LumpedGearboxModel::Create(NominalParameters(train));
   ASSERT_TRUE(nominal.ok());
-  Result<Plant> plant =
-      MakePlant({PlantFamily::kLumpedPerturbed, TrainVariant::kTable1, ChannelSet::kSeatsAndHousing, 4});
+  Result<Plant> plant = MakePlant(
+      {PlantFamily::kLumpedPerturbed, TrainVariant::kTable1, ChannelSet::kSeatsAndHousing, 4});
   ASSERT_TRUE(plant.ok()) << plant.error();
   const FrfSet& set = plant->model_frf;
   ASSERT_EQ(set.channels.size(), 4u);

@@ -51,7 +51,8 @@ struct Rig {
 
 Rig MakeRig(PlantFamily family, PlantFaultKind fault, const std::string& gear,
             double eccentricity = 0.0, std::uint64_t seed = 3) {
-  Result<Plant> plant = MakePlant({family, TrainVariant::kTable1, ChannelSet::kSeatsAndHousing, seed});
+  Result<Plant> plant =
+      MakePlant({family, TrainVariant::kTable1, ChannelSet::kSeatsAndHousing, seed});
   EXPECT_TRUE(plant.ok()) << plant.error();
   PlantExcitationConfig ec;
   ec.fault = fault;
@@ -66,8 +67,8 @@ Rig MakeRig(PlantFamily family, PlantFaultKind fault, const std::string& gear,
   sc.input_speed_hz = kSpeedHz;
   sc.noise_relative = 0.0;
   sc.seed = seed;
-  Result<PlantSimulator> sim = PlantSimulator::Create(plant->dynamics, plant->channels,
-                                                      std::move(ex).value(), sc);
+  Result<PlantSimulator> sim =
+      PlantSimulator::Create(plant->dynamics, plant->channels, std::move(ex).value(), sc);
   EXPECT_TRUE(sim.ok()) << sim.error();
   return {std::move(plant).value(), std::move(sim).value()};
 }
@@ -216,8 +217,8 @@ TEST(PlantSimulator, MeshAmPutsSidebandsAroundItsOwnMeshAtTheFaultyShaftRate) {
 
 TEST(PlantSimulator, BlocksAreBitIdenticalForTheSameSeed) {
   auto run = [](std::uint64_t seed) {
-    Result<Plant> plant =
-        MakePlant({PlantFamily::kLumpedTorsional, TrainVariant::kDistinct, ChannelSet::kSeats, seed});
+    Result<Plant> plant = MakePlant(
+        {PlantFamily::kLumpedTorsional, TrainVariant::kDistinct, ChannelSet::kSeats, seed});
     PlantExcitationConfig ec;
     ec.fault = PlantFaultKind::kCombined;
     ec.faulty_gear = "G4";

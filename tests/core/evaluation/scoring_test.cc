@@ -41,7 +41,7 @@ TEST(Scoring, InseparableCandidateSetsCountOverBroadOnesDoNot) {
   EXPECT_TRUE(VerdictNamesGear(V(kAl, "G3", {"G3", "G4"}), "G4", t1));
   EXPECT_TRUE(VerdictNamesGear(V(kSus, "G3", {"G3", "G4"}), "G3", t1));
   EXPECT_TRUE(VerdictNamesGear(V(kAl, "G1", {"G1"}), "G1", t1));
-  EXPECT_TRUE(VerdictNamesGear(V(kAl, "G2"), "G2", t1));  // no list: the gear name
+  EXPECT_TRUE(VerdictNamesGear(V(kAl, "G2"), "G2", t1));                 // no list: the gear name
   EXPECT_FALSE(VerdictNamesGear(V(kAl, "G2", {"G2", "G3"}), "G2", t1));  // over-broad
   EXPECT_FALSE(VerdictNamesGear(V(kAl, "G2", {"G2", "G3", "G4"}), "G3", t1));
   EXPECT_FALSE(VerdictNamesGear(V(kAl, "G1", {"G1"}), "G2", t1));
@@ -66,7 +66,8 @@ TEST(Scoring, MajorityFirstAlarmAndFlips) {
   EXPECT_EQ(s.flips, 3);  // no->sus, sus->alarm, alarm->no
   EXPECT_EQ(s.false_alarm_blocks, 0);
 
-  const std::vector<BlockVerdictRecord> g34 = {V(kAl, "G3", {"G3", "G4"}), V(kAl, "G3", {"G3", "G4"}),
+  const std::vector<BlockVerdictRecord> g34 = {V(kAl, "G3", {"G3", "G4"}),
+                                               V(kAl, "G3", {"G3", "G4"}),
                                                V(kAl, "G3", {"G3", "G4"}), V(kNo), V(kNo)};
   const ScenarioScore r = ScoreVerdicts(g34, "G4", t1);
   EXPECT_TRUE(r.detected);
