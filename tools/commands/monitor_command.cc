@@ -1,7 +1,9 @@
 // `gearpath monitor`: subscribes to the daemon's result and status topics and shows them.
 //
 // On a terminal it redraws one table per machine as results arrive; otherwise (or with --json)
-// it prints one line per sample, JSON with --json, so scripts and tests can parse it. It stops by
+// it prints one line per sample, JSON with --json, so scripts and tests can parse it. In the
+// JSON, every field of contract version 2 (idl/gearpath.idl) is named exactly as in the IDL;
+// the older ones keep their short names ("machine", "block", "gear", ...). It stops by
 // itself after --count verdicts (SuspectedGear samples, one per processed block) or after
 // --timeout seconds. Result topics are transient-local, so a monitor started late still gets
 // each machine's latest results at once.
@@ -9,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -44,6 +47,27 @@ const char* StateName(gearpath_FaultState s) {
     case gearpath_NO_FAULT: return "no_fault";
     case gearpath_SUSPECTED: return "suspected";
     case gearpath_ALARM: return "alarm";
+    case gearpath_LEARNING: return "learning";
+  }
+  return "unknown";
+}
+
+const char* CriterionName(gearpath_DominanceCriterion c) {
+  switch (c) {
+    case gearpath_CRITERION_BAND_ENERGY: return "band_energy";
+    case gearpath_CRITERION_PEAK_AMPLITUDE: return "peak_amplitude";
+    case gearpath_CRITERION_OTHER: return "other";
+    case gearpath_CRITERION_SIDEBAND_ENERGY: return "sideband_energy";
+    case gearpath_CRITERION_INDICATOR: return "indicator";
+  }
+  return "unknown";
+}
+
+const char* SignalSourceName(gearpath_SignalSource s) {
+  switch (s) {
+    case gearpath_SIGNAL_MEASURED: return "measured";
+    case gearpath_SIGNAL_CONTRIBUTION: return "contribution";
+    case gearpath_SIGNAL_FORCE: return "force";
   }
   return "unknown";
 }
@@ -71,12 +95,14 @@ const char* SpeedSourceName(gearpath_SpeedSource s) {
 json ToJson(const gearpath_DominantPath& s) {
   json paths = json::array();
   for (const auto& p : View(s.paths)) {
-    paths.push_back({{"name", GetString(p.name)}, {"share", p.share}});
+    paths.push_back(
+        {{"name", GetString(p.name)}, {"share", p.share}, {"criterion", p.criterion}});
   }
   return {{"topic", "DominantPath"},          {"machine", GetString(s.machine_id)},
           {"block", s.block_sequence},         {"t0_ns", s.block_t0_ns},
           {"path_index", s.path_index},        {"path", GetString(s.path_name)},
-          {"band_hz", {s.band_lo_hz, s.band_hi_hz}}, {"paths", paths}};
+          {"band_hz", {s.band_lo_hz, s.band_hi_hz}}, {"criterion", CriterionName(s.criterion)},
+          {"paths", paths}};
 }
 
 json ToJson(const gearpath_SuspectedGear& s) {
@@ -98,7 +124,9 @@ json ToJson(const gearpath_EnvelopeIndicators& s) {
                       {"characteristic_hz", sh.characteristic_frequency_hz},
                       {"raw", sh.raw_indicator},
                       {"reconstructed", sh.reconstructed_indicator},
-                      {"enhancement_percent", sh.enhancement_percent}});
+                      {"enhancement_percent", sh.enhancement_percent},
+                      {"raw_threshold", sh.raw_threshold},
+                      {"reconstructed_threshold", sh.reconstructed_threshold}});
   }
   return {{"topic", "EnvelopeIndicators"},
           {"machine", GetString(s.machine_id)},
@@ -113,6 +141,40 @@ json ToJson(const gearpath_EnvelopeIndicators& s) {
           {"speed_hz", s.speed_hz},
           {"speed_source", SpeedSourceName(s.speed_source)},
           {"shafts", shafts}};
+}
+
+json ToJson(const gearpath_ConditionIndicators& s) {
+  json sets = json::array();
+  for (const auto& set : View(s.sets)) {
+    json values = json::array();
+    for (const auto& v : View(set.values)) {
+      values.push_back({{"name", GetString(v.name)}, {"value", v.value}, {"z", v.z}});
+    }
+    sets.push_back({{"source", SignalSourceName(set.source)},
+                    {"signal", GetString(set.signal)},
+                    {"shaft", GetString(set.shaft)},
+                    {"shaft_hz", set.shaft_hz},
+                    {"revolutions", set.revolutions},
+                    {"score", set.score},
+                    {"values", values}});
+  }
+  return {{"topic", "ConditionIndicators"},
+          {"machine", GetString(s.machine_id)},
+          {"block", s.block_sequence},
+          {"t0_ns", s.block_t0_ns},
+          {"limit_z", s.limit_z},
+          {"clear_level", s.clear_level},
+          {"score", s.score},
+          {"top_indicator", GetString(s.top_indicator)},
+          {"top_signal", GetString(s.top_signal)},
+          {"top_shaft", GetString(s.top_shaft)},
+          {"exceed_count", s.exceed_count},
+          {"window", s.window},
+          {"baseline_blocks_learned", s.baseline_blocks_learned},
+          {"baseline_blocks_needed", s.baseline_blocks_needed},
+          {"sets", sets},
+          {"sets_omitted", s.sets_omitted},
+          {"values_omitted", s.values_omitted}};
 }
 
 json ToJson(const gearpath_Status& s) {
@@ -136,13 +198,41 @@ json ToJson(const gearpath_Status& s) {
 
 // The latest of each result topic per machine, for the terminal table.
 struct MachineView {
-  json dominant, gear, indicators;
+  json dominant, gear, indicators, condition;
 };
 
 std::string Fixed(double v, int decimals) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
   return buf;
+}
+
+// " (baseline 3/20)" from a ConditionIndicators sample; empty when unknown.
+std::string BaselineProgress(const json& condition) {
+  if (condition.is_null()) return "";
+  return " (baseline " + condition["baseline_blocks_learned"].dump() + "/" +
+         condition["baseline_blocks_needed"].dump() + ")";
+}
+
+// "score 0.42 of limit (z 6.1), 0/5 over the limit, top fm4 on B2x at output"; while learning
+// "learning the healthy baseline, 3/20 blocks".
+std::string ScoreText(const json& c) {
+  const double limit = c["limit_z"].get<double>();
+  if (!(limit > 0.0)) {
+    return "learning the healthy baseline, " + c["baseline_blocks_learned"].dump() + "/" +
+           c["baseline_blocks_needed"].dump() + " blocks";
+  }
+  std::string s = "score " + Fixed(c["score"].get<double>(), 2) + " of limit (z " +
+                  Fixed(limit, 1) + "), " + c["exceed_count"].dump() + "/" +
+                  c["window"].dump() + " over the limit";
+  if (!c["top_indicator"].get<std::string>().empty()) {
+    s += ", top " + c["top_indicator"].get<std::string>() + " on " +
+         c["top_signal"].get<std::string>() + " at " + c["top_shaft"].get<std::string>();
+  }
+  const auto omitted = c["sets_omitted"].get<std::uint64_t>() +
+                       c["values_omitted"].get<std::uint64_t>();
+  if (omitted > 0) s += " (" + std::to_string(omitted) + " indicators over the IDL bounds)";
+  return s;
 }
 
 void DrawTable(const std::map<std::string, MachineView>& machines, const json& status) {
@@ -153,6 +243,7 @@ void DrawTable(const std::map<std::string, MachineView>& machines, const json& s
     if (!v.gear.is_null()) {
       out += "  verdict    block " + v.gear["block"].dump() + ": " +
              v.gear["state"].get<std::string>();
+      if (v.gear["state"] == "learning") out += BaselineProgress(v.condition);
       if (!v.gear["gear"].get<std::string>().empty()) {
         out += "  gear " + v.gear["gear"].get<std::string>() + " on " +
                v.gear["shaft"].get<std::string>() + " shaft at " +
@@ -161,6 +252,7 @@ void DrawTable(const std::map<std::string, MachineView>& machines, const json& s
       }
       out += "\n  reason     " + v.gear["reason"].get<std::string>() + "\n";
     }
+    if (!v.condition.is_null()) out += "  score      " + ScoreText(v.condition) + "\n";
     if (!v.dominant.is_null()) {
       out += "  dominant   " + v.dominant["path"].get<std::string>() + "   shares:";
       for (const auto& p : v.dominant["paths"]) {
@@ -175,13 +267,14 @@ void DrawTable(const std::map<std::string, MachineView>& machines, const json& s
              Fixed(b["width_hz"].get<double>() / 2, 0) + " Hz, kurtosis " +
              Fixed(b["kurtosis"].get<double>(), 2) +
              (b["significant"].get<bool>() ? "" : " (not significant)") + "\n";
-      out += "  shaft            f [Hz]      raw    recon.  enhancement\n";
+      out += "  shaft            f [Hz]      raw (thr.)         recon. (thr.)     recon./raw\n";
       for (const auto& s : v.indicators["shafts"]) {
-        char line[160];
-        std::snprintf(line, sizeof line, "  %-14s %8.2f %8.3f %8.3f %10.0f %%\n",
+        char line[200];
+        std::snprintf(line, sizeof line, "  %-14s %8.2f %8.3f (%7.3f) %8.3f (%7.3f) %8.0f %%\n",
                       s["shaft"].get<std::string>().c_str(),
                       s["characteristic_hz"].get<double>(), s["raw"].get<double>(),
-                      s["reconstructed"].get<double>(),
+                      s["raw_threshold"].get<double>(), s["reconstructed"].get<double>(),
+                      s["reconstructed_threshold"].get<double>(),
                       s["enhancement_percent"].get<double>());
         out += line;
       }
@@ -205,12 +298,18 @@ void DrawTable(const std::map<std::string, MachineView>& machines, const json& s
   std::fflush(stdout);
 }
 
-// Plain one-line summary of a sample for non-terminal output without --json.
-std::string PlainLine(const json& j) {
+// Plain one-line summary of a sample for non-terminal output without --json. `condition` is
+// the machine's latest ConditionIndicators (null if none yet), for the baseline progress.
+std::string PlainLine(const json& j, const json& condition) {
   const std::string topic = j["topic"];
+  if (topic == "ConditionIndicators") {
+    return "score     " + j["machine"].get<std::string>() + " block " + j["block"].dump() +
+           ": " + ScoreText(j);
+  }
   if (topic == "SuspectedGear") {
     std::string s = "verdict   " + j["machine"].get<std::string>() + " block " +
                     j["block"].dump() + ": " + j["state"].get<std::string>();
+    if (j["state"] == "learning") s += BaselineProgress(condition);
     if (!j["gear"].get<std::string>().empty()) {
       s += " " + j["gear"].get<std::string>() + " (" + j["shaft"].get<std::string>() + ", " +
            Fixed(j["characteristic_hz"].get<double>(), 2) + " Hz, confidence " +
@@ -259,6 +358,7 @@ int RunMonitor(const MonitorOptions& opt) {
   Subscription<gearpath_SuspectedGear> gear(participant, waitset, 2);
   Subscription<gearpath_EnvelopeIndicators> indicators(participant, waitset, 3);
   Subscription<gearpath_Status> status(participant, waitset, 4);
+  Subscription<gearpath_ConditionIndicators> condition(participant, waitset, 5);
 
   std::map<std::string, MachineView> table;
   json last_status;
@@ -272,8 +372,12 @@ int RunMonitor(const MonitorOptions& opt) {
       else last_status = std::move(j);
       DrawTable(table, last_status);
     } else {
-      std::puts(opt.json_lines ? j.dump().c_str() : PlainLine(j).c_str());
+      static const json kNone;
+      const json& latest = machine.empty() ? kNone : table[machine].condition;
+      std::puts(opt.json_lines ? j.dump().c_str() : PlainLine(j, latest).c_str());
       std::fflush(stdout);
+      // Plain lines keep only the latest scores (for the baseline progress of verdicts).
+      if (slot == &MachineView::condition) table[machine].condition = std::move(j);
     }
   };
   auto drain = [&](auto& sub, auto on_sample) -> bool {
@@ -315,6 +419,10 @@ int RunMonitor(const MonitorOptions& opt) {
     ok = ok && drain(indicators, [&](const auto& s) {
       emit(ToJson(s), std::string(GetString(s.machine_id)), &MachineView::indicators);
     });
+    // Before the verdicts, so that a verdict line can show the same block's baseline progress.
+    ok = ok && drain(condition, [&](const auto& s) {
+      emit(ToJson(s), std::string(GetString(s.machine_id)), &MachineView::condition);
+    });
     ok = ok && drain(gear, [&](const auto& s) {
       const std::string machine(GetString(s.machine_id));
       if (!wanted.empty() && !wanted.count(machine)) return;
@@ -335,8 +443,8 @@ void AddMonitorCommand(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<MonitorOptions>();
   CLI::App* cmd = app.add_subcommand(
       "monitor", "Show the daemon's fault topics (dominant path, suspected gear, envelope "
-                 "indicators) and its status, live; loopback DDS unless CYCLONEDDS_URI says "
-                 "otherwise");
+                 "and condition indicators with the block score) and its status, live; "
+                 "loopback DDS unless CYCLONEDDS_URI says otherwise");
   cmd->add_option("--domain", opt->domain_id, "DDS domain id")->capture_default_str()
       ->check(CLI::Range(0, 232));
   cmd->add_option("--machine", opt->machines, "Only these machine ids (repeatable)");

@@ -348,6 +348,37 @@ int RunReport(const ReportOptions& o) {
     r.reconstructed_harmonics = sh.reconstructed_harmonics;
     d.shafts.push_back(std::move(r));
   }
+  // Condition indicators: BlockResult::condition is signal-major over the rate groups and does
+  // not store a set's group, so set i has group i % groups (groups = the processor's groups of
+  // indicator names = condition.size() / number of signals).
+  std::size_t groups = 0;
+  while (!proc.ConditionIndicatorNames(groups).empty()) ++groups;
+  const BlockScore& score = result.score;
+  d.score = {score.limit_z,
+             score.clear_level,
+             score.score,
+             std::string(score.indicator),
+             std::string(score.signal),
+             std::string(score.shaft),
+             score.exceed_count,
+             score.window};
+  for (std::size_t i = 0; groups > 0 && i < result.condition.size(); ++i) {
+    const BlockConditionIndicators& c = result.condition[i];
+    ReportIndicatorSet set;
+    set.source = std::string(ToString(c.source));
+    set.signal = std::string(c.signal);
+    set.shaft = std::string(c.shaft);
+    set.group = i % groups;
+    set.shaft_hz = c.shaft_hz;
+    set.revolutions = c.revolutions;
+    set.score = c.score;
+    const auto names = proc.ConditionIndicatorNames(set.group);
+    for (std::size_t k = 0; k < c.value.size() && k < c.z.size(); ++k) {
+      set.values.push_back({k < names.size() ? names[k] : fmt::format("#{}", k), c.value[k],
+                            c.z[k]});
+    }
+    d.condition.push_back(std::move(set));
+  }
   d.state = ToString(result.verdict.state);
   d.gear = std::string(result.verdict.gear_name);
   d.shaft = std::string(result.verdict.shaft_name);

@@ -71,6 +71,36 @@ struct ReportTrendPoint {
   std::vector<double> reconstructed_threshold;  // per shaft
 };
 
+// Condition indicators of one signal at one shaft rate (BlockConditionIndicators).
+struct ReportIndicatorValue {
+  std::string name;  // e.g. "fm4", "sideband_G1-G2"
+  double value = 0.0;
+  double z = 0.0;  // robust z-score against the healthy baseline (0 while learning)
+};
+
+struct ReportIndicatorSet {
+  std::string source;  // "measured", "contribution", "force"
+  std::string signal;  // channel "A1/x" or path name
+  std::string shaft;   // first shaft of the rate group
+  std::size_t group = 0;  // rate group (sets of one group share their indicator names)
+  double shaft_hz = 0.0;
+  int revolutions = 0;
+  double score = 0.0;  // largest directional z / limit over the set
+  std::vector<ReportIndicatorValue> values;
+};
+
+// The block's anomaly score and the limits in force (BlockScore).
+struct ReportScore {
+  double limit_z = 0.0;  // 0 while learning
+  double clear_level = 0.0;
+  double score = 0.0;  // largest z / limit_z
+  std::string indicator;
+  std::string signal;
+  std::string shaft;
+  int exceed_count = 0;
+  int window = 0;
+};
+
 struct ReportData {
   // Where it comes from.
   std::string machine_id;
@@ -99,6 +129,10 @@ struct ReportData {
   ReportSes ses_raw;
   ReportSes ses_reconstructed;
   std::vector<ReportShaft> shafts;
+
+  // Condition indicators and the block score (shown once the baseline is learned).
+  ReportScore score;
+  std::vector<ReportIndicatorSet> condition;
 
   // Verdict.
   std::string state;

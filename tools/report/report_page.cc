@@ -17,6 +17,7 @@ body { font-family: "DejaVu Sans", "Liberation Sans", Arial, sans-serif; margin:
        color: #222222; background: #fafafa; }
 h1 { font-size: 22px; margin-bottom: 4px; }
 h2 { font-size: 17px; margin: 22px 0 8px 0; border-bottom: 1px solid #cccccc; }
+h3 { font-size: 14px; margin: 14px 0 6px 0; }
 table { border-collapse: collapse; font-size: 13px; }
 th, td { border: 1px solid #cccccc; padding: 4px 9px; text-align: right; }
 th { background: #eeeeee; }
@@ -41,6 +42,74 @@ void Cell(std::string& s, double value, int digits = 4, bool over = false) {
 void Meta(std::string& s, std::string_view key, std::string_view value) {
   fmt::format_to(std::back_inserter(s), "<tr><th class=\"name\">{}</th><td>{}</td></tr>\n",
                  XmlEscape(key), XmlEscape(value));
+}
+
+// Condition indicators, one table per shaft-rate group (the groups' indicator names differ by
+// their meshes): a row per signal, a cell per indicator with its value and z; |z| over the
+// limit in red. Shown only once the baseline is learned (no z before).
+void ConditionSection(std::string& s, const ReportData& d) {
+  const auto out = std::back_inserter(s);
+  const ReportScore& sc = d.score;
+  s += "<h2>Condition indicators (synchronous averages, judged against the healthy "
+       "baseline)</h2>\n<section id=\"condition\">\n";
+  if (!(sc.limit_z > 0.0)) {
+    fmt::format_to(out,
+                   "<p class=\"note\">Not judged yet: the healthy baseline is being learned "
+                   "({} of {} blocks); indicators get z-scores and a limit once it is "
+                   "complete.</p>\n</section>\n",
+                   d.baseline_learned, d.baseline_needed);
+    return;
+  }
+  s += "<table class=\"score meta\">\n";
+  Meta(s, "block score",
+       fmt::format("{} of the limit (z {}), {} on {} at {}", DisplayNumber(sc.score, 3),
+                   DisplayNumber(sc.score * sc.limit_z, 3), sc.indicator, sc.signal, sc.shaft));
+  Meta(s, "limit in force",
+       fmt::format("|z| {} (from the false-alarm rate); an alarm clears below {} x the limit",
+                   DisplayNumber(sc.limit_z, 4), DisplayNumber(sc.clear_level, 3)));
+  Meta(s, "exceedances", fmt::format("{} of the last {} blocks over the limit", sc.exceed_count,
+                                     sc.window));
+  s += "</table>\n";
+  std::size_t groups = 0;
+  for (const auto& set : d.condition) groups = std::max(groups, set.group + 1);
+  for (std::size_t g = 0; g < groups; ++g) {
+    const ReportIndicatorSet* first = nullptr;
+    for (const auto& set : d.condition) {
+      if (set.group == g) {
+        first = &set;
+        break;
+      }
+    }
+    if (first == nullptr) continue;
+    fmt::format_to(out,
+                   "<h3>{} shaft rate ({} Hz)</h3>\n<table class=\"condition\" "
+                   "data-group=\"{}\">\n<tr><th class=\"name\">signal</th><th "
+                   "class=\"name\">source</th><th>revolutions</th><th>set score</th>",
+                   XmlEscape(first->shaft), XmlEscape(DisplayNumber(first->shaft_hz, 5)), g);
+    for (const auto& v : first->values) {
+      fmt::format_to(out, "<th>{}<br/>value</th><th>z</th>", XmlEscape(v.name));
+    }
+    s += "</tr>\n";
+    for (const auto& set : d.condition) {
+      if (set.group != g) continue;
+      fmt::format_to(out,
+                     "<tr data-signal=\"{}\" data-source=\"{}\" data-shaft=\"{}\"><td "
+                     "class=\"name\">{}</td><td class=\"name\">{}</td><td>{}</td>",
+                     XmlEscape(set.signal), XmlEscape(set.source), XmlEscape(set.shaft),
+                     XmlEscape(set.signal), XmlEscape(set.source), set.revolutions);
+      Cell(s, set.score, 3, set.score > 1.0);
+      for (const auto& v : set.values) {
+        const bool over = std::abs(v.z) > sc.limit_z;
+        Cell(s, v.value, 4, over);
+        Cell(s, v.z, 3, over);
+      }
+      s += "</tr>\n";
+    }
+    s += "</table>\n";
+  }
+  s += "<p class=\"note\">z: robust z-score against the machine's healthy baseline (median and "
+       "scale). Red: |z| over the limit (set score: over 1 = over the limit). Units: "
+       "docs/condition_indicators.md.</p>\n</section>\n";
 }
 
 std::string StateLabel(const std::string& state) {
@@ -175,6 +244,8 @@ std::string RenderReportHtml(const ReportData& d) {
   s += "</table>\n<p class=\"note\">Thresholds are 0 while the healthy baseline is being "
        "learned. Red: indicator over its threshold. Enhancement = 100 x reconstructed / raw.</p>\n"
        "</section>\n";
+
+  ConditionSection(s, d);
 
   // Trend over the span.
   if (d.trend.size() > 1) {

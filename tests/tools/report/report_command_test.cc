@@ -112,6 +112,10 @@ struct Fixture {
   // The processor outlives the results: their path and shaft names are views into it.
   std::optional<BlockProcessor> processor;
   std::vector<BlockResult> results;  // per block, from `processor`
+  // Copies of each block's condition-indicator values and z-scores (results[i].condition's
+  // spans view the processor's buffers, which the next block overwrites).
+  std::vector<std::vector<std::vector<double>>> condition_values;
+  std::vector<std::vector<std::vector<double>>> condition_z;
 };
 
 // Table-1 model, the `builtin:table1` FRF grid (bins 1..4096 of 8192 samples at 8 kHz).
@@ -177,6 +181,12 @@ const Fixture& Shared() {
     for (std::size_t i = 0; i < rec.block_count(); ++i) {
       EXPECT_TRUE(x.processor->Process(rec.block(i), r).accepted());
       x.results.push_back(r);
+      auto& values = x.condition_values.emplace_back();
+      auto& z = x.condition_z.emplace_back();
+      for (const BlockConditionIndicators& c : r.condition) {
+        values.emplace_back(c.value.begin(), c.value.end());
+        z.emplace_back(c.z.begin(), c.z.end());
+      }
     }
     return x;
   }();
@@ -255,6 +265,34 @@ TEST(ReportCommandTest, TableAndVerdictAreTheBlockResults) {
   EXPECT_EQ(truth.verdict.gear_name, "G1");
   EXPECT_NE(html.find(state == "alarm" ? ">ALARM: gear G1" : ">SUSPECTED: gear G1"),
             std::string::npos);
+}
+
+TEST(ReportCommandTest, ConditionTablesAreTheBlockResultsIndicatorsWithTheLimitInForce) {
+  const Fixture& f = Shared();
+  const fs::path out = f.dir / "condition.html";
+  ASSERT_EQ(RunTool(ReportArgs(f, "--block " + std::to_string(kReportedBlock), out), f.dir).code,
+            0);
+  const std::string html = ReadText(out);
+  const BlockResult& truth = f.results[kReportedBlock];
+  ASSERT_GT(truth.score.limit_z, 0.0) << "the baseline was learned from the healthy blocks";
+  EXPECT_NE(html.find(fmt::format("|z| {:.4g} (from the false-alarm rate)", truth.score.limit_z)),
+            std::string::npos);
+  ASSERT_FALSE(truth.condition.empty());
+  EXPECT_EQ(Count(html, "<tr data-signal="), truth.condition.size());
+  for (std::size_t i = 0; i < truth.condition.size(); ++i) {
+    const BlockConditionIndicators& c = truth.condition[i];
+    const std::vector<double>& value = f.condition_values[kReportedBlock][i];
+    const std::vector<double>& z = f.condition_z[kReportedBlock][i];
+    const std::vector<double> v = RowValues(
+        html, fmt::format("<tr data-signal=\"{}\" data-source=\"{}\" data-shaft=\"{}\">",
+                          c.signal, ToString(c.source), c.shaft));
+    ASSERT_EQ(v.size(), 1 + 2 * value.size()) << c.signal << " at " << c.shaft;
+    EXPECT_EQ(v[0], c.score);
+    for (std::size_t k = 0; k < value.size(); ++k) {
+      EXPECT_EQ(v[1 + 2 * k], value[k]) << c.signal << " at " << c.shaft << ", value " << k;
+      EXPECT_EQ(v[2 + 2 * k], z[k]) << c.signal << " at " << c.shaft << ", z " << k;
+    }
+  }
 }
 
 TEST(ReportCommandTest, SpanReportAddsOneTrendRowPerBlock) {

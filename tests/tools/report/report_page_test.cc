@@ -57,7 +57,39 @@ ReportData HostileData() {
   d.reason = "because x < y & y > z";
   d.trend = {{0, 1, "B<1>x", "learning", "", {0.1, 0.2}, {0.3, 0.4}, {0.0, 0.0}},
              {1, 2, "B<1>x", "alarm", "G<1>", {0.1, 0.2}, {0.9, 0.4}, {0.5, 0.5}}};
+  d.baseline_learned = 20;
+  d.baseline_needed = 20;
+  d.score = {6.0, 0.7, 1.5, "fm<4>", "B<1>x", "in<put>", 3, 5};
+  d.condition = {{"measured", "p<1>/x", "in<put>", 0, 10.0, 20, 0.5, {{"fm<4>", 3.0, 2.0}}},
+                 {"force", "B<1>x", "in<put>", 0, 10.0, 20, 1.5, {{"fm<4>", 9.0, -9.0}}},
+                 {"measured", "p<1>/x", "out&put", 1, 7.0, 14, 0.1, {{"sideband_G1-G2", 1.0,
+                                                                       0.5}}}};
   return d;
+}
+
+TEST(ReportPageTest, ConditionTablesShowEachIndicatorsValueAndZAndMarkZOverTheLimit) {
+  const std::string html = RenderReportHtml(HostileData());
+  // One table per rate group, one row per signal.
+  EXPECT_EQ(Count(html, "<table class=\"condition\""), 2u);
+  EXPECT_NE(html.find("data-group=\"1\""), std::string::npos);
+  EXPECT_EQ(Count(html, "<tr data-signal="), 3u);
+  // The limit in force and the block score.
+  EXPECT_NE(html.find("1.5 of the limit (z 9)"), std::string::npos);
+  EXPECT_NE(html.find("|z| 6 (from the false-alarm rate)"), std::string::npos);
+  EXPECT_NE(html.find("3 of the last 5 blocks"), std::string::npos);
+  // |z| = 9 > 6 is red (value, z and the set score 1.5 > 1); z = 2 is not.
+  EXPECT_NE(html.find("<td data-value=\"-9\" class=\"over\">"), std::string::npos);
+  EXPECT_NE(html.find("<td data-value=\"9\" class=\"over\">"), std::string::npos);
+  EXPECT_NE(html.find("<td data-value=\"2\">"), std::string::npos);
+}
+
+TEST(ReportPageTest, ConditionIndicatorsAreNotJudgedWhileTheBaselineIsLearned) {
+  ReportData d = HostileData();
+  d.score.limit_z = 0.0;
+  d.baseline_learned = 7;
+  const std::string html = RenderReportHtml(d);
+  EXPECT_EQ(Count(html, "<table class=\"condition\""), 0u);
+  EXPECT_NE(html.find("(7 of 20 blocks)"), std::string::npos);
 }
 
 TEST(XmlEscapeTest, EscapesTheFiveXmlSpecialCharacters) {
