@@ -93,6 +93,9 @@ class GearpathdOverDds : public ::testing::Test {
     indicators_topic_ = std::make_unique<dds::Topic<gearpath_EnvelopeIndicators>>(*participant_);
     indicators_reader_ =
         std::make_unique<dds::Reader<gearpath_EnvelopeIndicators>>(*indicators_topic_);
+    condition_topic_ = std::make_unique<dds::Topic<gearpath_ConditionIndicators>>(*participant_);
+    condition_reader_ =
+        std::make_unique<dds::Reader<gearpath_ConditionIndicators>>(*condition_topic_);
 
     daemon_ = std::make_unique<ChildProcess>(
         GEARPATHD_PATH, std::vector<std::string>{"--config", config_path_},
@@ -112,6 +115,8 @@ class GearpathdOverDds : public ::testing::Test {
     }
     if (HasFailure() && daemon_) std::cerr << "gearpathd log:\n" << daemon_->Log() << "\n";
     daemon_.reset();
+    condition_reader_.reset();
+    condition_topic_.reset();
     indicators_reader_.reset();
     indicators_topic_.reset();
     gear_reader_.reset();
@@ -232,6 +237,8 @@ class GearpathdOverDds : public ::testing::Test {
   std::unique_ptr<dds::Reader<gearpath_SuspectedGear>> gear_reader_;
   std::unique_ptr<dds::Topic<gearpath_EnvelopeIndicators>> indicators_topic_;
   std::unique_ptr<dds::Reader<gearpath_EnvelopeIndicators>> indicators_reader_;
+  std::unique_ptr<dds::Topic<gearpath_ConditionIndicators>> condition_topic_;
+  std::unique_ptr<dds::Reader<gearpath_ConditionIndicators>> condition_reader_;
   std::unique_ptr<ChildProcess> daemon_;
 };
 
