@@ -207,9 +207,10 @@ std::string Fixed(double v, int decimals) {
   return buf;
 }
 
-// " (baseline 3/20)" from a ConditionIndicators sample; empty when unknown.
-std::string BaselineProgress(const json& condition) {
-  if (condition.is_null()) return "";
+// " (baseline 3/20)" from the ConditionIndicators sample of the same block as `verdict`; empty
+// when that sample has not arrived (the topics arrive independently).
+std::string BaselineProgress(const json& condition, const json& verdict) {
+  if (condition.is_null() || condition["block"] != verdict["block"]) return "";
   return " (baseline " + condition["baseline_blocks_learned"].dump() + "/" +
          condition["baseline_blocks_needed"].dump() + ")";
 }
@@ -243,7 +244,7 @@ void DrawTable(const std::map<std::string, MachineView>& machines, const json& s
     if (!v.gear.is_null()) {
       out += "  verdict    block " + v.gear["block"].dump() + ": " +
              v.gear["state"].get<std::string>();
-      if (v.gear["state"] == "learning") out += BaselineProgress(v.condition);
+      if (v.gear["state"] == "learning") out += BaselineProgress(v.condition, v.gear);
       if (!v.gear["gear"].get<std::string>().empty()) {
         out += "  gear " + v.gear["gear"].get<std::string>() + " on " +
                v.gear["shaft"].get<std::string>() + " shaft at " +
@@ -309,7 +310,7 @@ std::string PlainLine(const json& j, const json& condition) {
   if (topic == "SuspectedGear") {
     std::string s = "verdict   " + j["machine"].get<std::string>() + " block " +
                     j["block"].dump() + ": " + j["state"].get<std::string>();
-    if (j["state"] == "learning") s += BaselineProgress(condition);
+    if (j["state"] == "learning") s += BaselineProgress(condition, j);
     if (!j["gear"].get<std::string>().empty()) {
       s += " " + j["gear"].get<std::string>() + " (" + j["shaft"].get<std::string>() + ", " +
            Fixed(j["characteristic_hz"].get<double>(), 2) + " Hz, confidence " +
