@@ -41,16 +41,22 @@ struct AggregateRow {
   int errors = 0;
 
   void Add(const ScenarioOutcome& outcome);
-  double detection_rate() const { return faulty > 0 ? double(detected) / faulty : 0.0; }
-  double right_gear_rate() const { return faulty > 0 ? double(right_gear) / faulty : 0.0; }
+  double detection_rate() const {
+    return faulty > 0 ? static_cast<double>(detected) / faulty : 0.0;
+  }
+  double right_gear_rate() const {
+    return faulty > 0 ? static_cast<double>(right_gear) / faulty : 0.0;
+  }
   double false_alarm_rate() const {
-    return healthy_blocks > 0 ? double(false_alarm_blocks) / healthy_blocks : 0.0;
+    return healthy_blocks > 0 ? static_cast<double>(false_alarm_blocks) / healthy_blocks : 0.0;
   }
   double mean_first_alarm() const {
-    return first_alarm_count > 0 ? double(first_alarm_sum) / first_alarm_count : 0.0;
+    return first_alarm_count > 0 ? static_cast<double>(first_alarm_sum) / first_alarm_count : 0.0;
   }
-  double mean_flips() const { return scored > 0 ? double(flips_sum) / scored : 0.0; }
-  double learning_rate() const { return blocks > 0 ? double(learning_blocks) / blocks : 0.0; }
+  double mean_flips() const { return scored > 0 ? static_cast<double>(flips_sum) / scored : 0.0; }
+  double learning_rate() const {
+    return blocks > 0 ? static_cast<double>(learning_blocks) / blocks : 0.0;
+  }
 };
 
 struct AggregateTable {

@@ -105,7 +105,7 @@ class PlantSimulator {
   std::uint64_t blocks_written() const noexcept { return blocks_; }
 
  private:
-  PlantSimulator(PlantExcitation excitation) : excitation_(std::move(excitation)) {}
+  explicit PlantSimulator(PlantExcitation excitation) : excitation_(std::move(excitation)) {}
   void AddUnmodelled(std::int64_t first_sample, Eigen::MatrixXd& signal) const;
 
   PlantSimulatorConfig config_;
