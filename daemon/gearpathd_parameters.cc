@@ -247,22 +247,52 @@ ParamSpec AnalysisSection() {
                Number("harmonic_tolerance",
                       "Relative tolerance on harmonic positions (speed drift).", 0.0, 0.5, 0.02)}),
        Object("baseline",
-              "Verdict thresholds: learned from the machine's own first (healthy) blocks "
-              "unless given.",
-              {Integer("learning_blocks", "Healthy blocks to learn the thresholds from (a mean and a spread need two).", 2,
-                       100000, 20),
-               Number("k_sigma", "Learned threshold = mean + k_sigma x standard deviation.", 0.0,
-                      100.0, 4.0, true),
-               Number("alarm_factor", "Alarm when an indicator exceeds alarm_factor x threshold.",
-                      1.0, 1000.0, 2.0),
+              "The machine's healthy baseline, learned from its first accepted blocks (assumed "
+              "healthy): every condition indicator's median and MAD, judged with a z limit "
+              "from a target false-alarm rate (docs/diagnosis.md).",
+              {Integer("learning_blocks",
+                       "Healthy blocks to learn the baseline from (a median and a MAD need three).",
+                       3, 100000, 20),
+               Number("false_alarm_rate",
+                      "Target rate of healthy blocks in which any scored indicator exceeds its "
+                      "limit (the alarm model's persistence lowers the rate of flagged blocks "
+                      "far below it).",
+                      0.0, 0.5, 0.01, true),
+               Number("scale_floor",
+                      "Relative floor of every indicator's healthy spread (0.05: a change under "
+                      "5 % of its level never counts as large).",
+                      0.0, 1.0, 0.05),
+               Number("k_sigma",
+                      "Published envelope-indicator thresholds = mean + k_sigma x standard "
+                      "deviation.",
+                      0.0, 100.0, 4.0, true),
                Array("raw_thresholds",
-                     "Per-shaft thresholds of the raw indicator, shaft order (empty: learn).",
+                     "Per-shaft thresholds of the raw envelope indicator, shaft order (empty: "
+                     "learn).",
                      Number("threshold", "Threshold.", 0.0, 1e30, nullptr, true), 0, 16,
                      json::array()),
                Array("reconstructed_thresholds",
-                     "Per-shaft thresholds of the reconstructed indicator (empty: learn).",
+                     "Per-shaft thresholds of the reconstructed envelope indicator (empty: "
+                     "learn).",
                      Number("threshold", "Threshold.", 0.0, 1e30, nullptr, true), 0, 16,
-                     json::array())})});
+                     json::array())}),
+       Object("alarm",
+              "Persistence, hysteresis and clear delay between the per-block score and the "
+              "published state (core/diagnosis/alarm_model.h).",
+              {Integer("window", "Blocks the persistence rule looks back over.", 1, 64, 5),
+               Integer("suspect_blocks", "Exceeding blocks in the window for `suspected`.", 1,
+                       64, 2),
+               Integer("alarm_blocks", "Exceeding blocks in the window for `alarm`.", 1, 64, 3),
+               Number("clear_level",
+                      "Once raised, a block still counts as exceeding down to this fraction of "
+                      "the limit (hysteresis).",
+                      0.0, 1.0, 0.7, true),
+               Integer("clear_blocks", "Consecutive blocks under clear_level that clear it.", 1,
+                       1000, 3),
+               Number("mesh_separation",
+                      "A mesh is named alone when its transfer-signature evidence leads the "
+                      "next mesh's by this factor; otherwise both meshes' gears are candidates.",
+                      1.0, 100.0, 1.5)})});
 }
 
 ParamSpec MachineSpec() {

@@ -78,7 +78,15 @@ AnalysisOptions TranslateOptions(const json& m) {
   const json& base = a.at("baseline");
   o.baseline_blocks = Get<int>(base, "learning_blocks");
   o.baseline_k_sigma = Get<double>(base, "k_sigma");
-  o.alarm_factor = Get<double>(base, "alarm_factor");
+  o.false_alarm_rate = Get<double>(base, "false_alarm_rate");
+  o.scale_floor = Get<double>(base, "scale_floor");
+  const json& alarm = a.at("alarm");
+  o.alarm_window = Get<int>(alarm, "window");
+  o.suspect_k = Get<int>(alarm, "suspect_blocks");
+  o.alarm_k = Get<int>(alarm, "alarm_blocks");
+  o.clear_level = Get<double>(alarm, "clear_level");
+  o.clear_blocks = Get<int>(alarm, "clear_blocks");
+  o.mesh_separation = Get<double>(alarm, "mesh_separation");
   o.raw_thresholds = Get<std::vector<double>>(base, "raw_thresholds");
   o.reconstructed_thresholds = Get<std::vector<double>>(base, "reconstructed_thresholds");
   return o;

@@ -84,7 +84,7 @@ Status InitialiseState(const MachineContext& m, MachineState& st) {
   if (!baseline) return Error{at + "options.baseline: " + baseline.error()};
   st.indicator_baseline.emplace(std::move(baseline.value()));
   st.limit_z = RobustBaseline::ZForFalseAlarmRate(
-      o.false_alarm_rate, static_cast<int>(m.indicator_count), o.baseline_blocks);
+      o.false_alarm_rate, static_cast<int>(m.scored_indicator_count), o.baseline_blocks);
   if (!(st.limit_z > 0.0)) {
     return Error{at + fmt::format("options.false_alarm_rate {} gives no z limit (needs 0 < rate "
                                   "< 1 and baseline_blocks >= 3)",

@@ -1,28 +1,29 @@
-// BlockProcessor: one machine's per-block diagnosis engine (the whole data flow of DESIGN.md).
-//
-// For every block: validate -> spectra (FFTW, real-to-complex, one plan per block shape) ->
-// bearing forces per bin (seed Eqs. 40-43 MWI; Tikhonov or least squares selectable) ->
-// path contributions C_ij(f) = H_d,ij(f) F_j(f) at every channel (seed Eq. 45) -> per-path
-// energy shares -> dominant path -> its contribution back to time -> fast kurtogram band ->
-// band-pass, Hilbert, normalised squared envelope spectrum (SES) -> per-shaft indicators
-// (sum of SES amplitudes at the first five harmonics of the shaft rate; seed Sec. 4.3,
-// Table 5), raw vs reconstructed, enhancement = reconstructed / raw in percent -> suspected
-// gear (docs/diagnosis.md explains the verdict logic and the physics behind it).
+// BlockProcessor: one machine's per-block diagnosis engine (the whole data flow of DESIGN.md),
+// a chain of stages (core/pipeline/pipeline_stage.h), top to bottom:
+//   spectra -> speed -> bearing forces (seed Eqs. 40-43 MWI; Tikhonov or least squares) ->
+//   path energies (contributions C_ij = H_d,ij F_j, seed Eq. 45) -> dominant path ->
+//   envelope indicators (seed Algorithm 2: kurtogram band, SES, five shaft harmonics) ->
+//   condition indicators (synchronous average per shaft rate of every measured channel, path
+//   contribution and force: FM0, FM4, NA4, M6A, M8A, ER, SLF, mesh harmonics, residual
+//   energies, per-mesh sidebands, transfer signatures) -> scoring against the machine's robust
+//   healthy baseline -> localisation (shaft group, mesh, gears) -> alarm model (persistence,
+//   hysteresis, clear delay) -> verdict.
+// docs/diagnosis.md explains each decision and the evaluation behind it.
 //
 // Configure once, process per block:
 //  - Create() validates the setup and builds everything that depends only on the FRFs and the
-//    gear train. Errors come back as Result, naming the offending field.
+//    gear train (MachineContext). Errors come back as Result, naming the offending field.
 //  - The first block of a new shape (samples_per_channel; the sample rate is fixed per machine)
-//    configures: FFT plans, the FRF set brought onto the block's bin grid ONCE (linear
-//    interpolation in real and imaginary parts; bins outside the FRF's frequency range get
-//    zero force and are excluded from contributions and shares, and are counted in the
-//    result), the per-bin identification operators, kurtogram plans, buffers. That block
-//    allocates; Prepare(n) does it ahead of time. Later blocks of a configured shape allocate
-//    nothing. Up to kMaxShapes shapes are kept; a further new shape replaces the oldest.
+//    configures every stage: FFT plans, the FRF set brought onto the block's bin grid ONCE
+//    (linear interpolation in real and imaginary parts; bins outside the FRF's frequency range
+//    get zero force and are excluded and counted), the per-bin identification operators,
+//    kurtogram and synchronous-average plans, buffers. That block allocates; Prepare(n) does
+//    it ahead of time. Later blocks of a configured shape allocate nothing. Up to kMaxShapes
+//    shapes are kept; a further new shape replaces the least recently used.
 //  - Process() is noexcept. It never throws on data: a bad block comes back as a typed
 //    RejectReason with a one-line message and leaves the BlockResult untouched.
-//  - Thresholds: configured, or learned from the first baseline_blocks ACCEPTED blocks, which
-//    are assumed healthy (the verdict is kLearning meanwhile; ResetBaseline() relearns).
+//  - The first baseline_blocks accepted blocks with a known speed are the machine's healthy
+//    baseline (the verdict is kLearning meanwhile; ResetBaseline() relearns).
 //
 // Thread-safety: one BlockProcessor per machine worker; Process() mutates internal buffers
 // and must not be called concurrently on the same instance. Different instances share
@@ -105,14 +106,13 @@ struct AnalysisOptions {
   bool remove_mesh_tones = false;
   double harmonic_tolerance = 0.02;  // relative tolerance on harmonic positions (speed drift)
 
-  // --- Verdict ---
+  // --- Envelope thresholds (published with the envelope indicators) ---
   // Per-shaft thresholds of the raw and of the reconstructed indicator (same order as the
   // train's shafts); both empty = learn them from the first baseline_blocks accepted blocks.
   std::vector<double> raw_thresholds;
   std::vector<double> reconstructed_thresholds;
-  int baseline_blocks = 20;       // healthy blocks to learn from (when thresholds are empty)
-  double baseline_k_sigma = 4.0;  // threshold = mean + k * sigma over the baseline blocks
-  double alarm_factor = 2.0;      // Alarm when indicator > alarm_factor * threshold
+  int baseline_blocks = 20;       // healthy blocks the baselines are learned from (>= 3)
+  double baseline_k_sigma = 4.0;  // published envelope threshold = mean + k * sigma
 
   // --- Condition indicators and their healthy baseline (docs/diagnosis.md) ---
   // Target rate of healthy blocks in which ANY indicator exceeds its limit; the limit in

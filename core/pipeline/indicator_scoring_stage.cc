@@ -13,8 +13,7 @@ namespace gearpath {
 Status IndicatorScoringStage::Configure(const MachineContext& machine, BlockWorkspace&) {
   two_sided_.assign(machine.indicator_count, 0);
   for (const ConditionSlot& slot : machine.condition_slots) {
-    for (ConditionIndicator i : {ConditionIndicator::kMeshHarmonics, ConditionIndicator::kFm0,
-                                 ConditionIndicator::kTsaRms}) {
+    for (ConditionIndicator i : {ConditionIndicator::kMeshHarmonics, ConditionIndicator::kTsaRms}) {
       two_sided_[slot.offset + static_cast<std::size_t>(i)] = 1;
     }
   }
@@ -65,6 +64,10 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
     }
     const ConditionSlot& cs = m.condition_slots[s];
     const RateGroup& rg = m.rate_groups[cs.group];
+    // Identified forces are published and serve the localisation, but do not raise the
+    // score: the inversion amplifies noise at ill-conditioned bins, and their indicators
+    // exceeded the limit in ~10x more healthy blocks than the measured ones (docs/diagnosis.md).
+    if (m.condition_signals[cs.signal].source == ConditionSource::kForce) continue;
     for (std::size_t k = 0; k < cs.count; ++k) {
       const double d = directional(cs.offset + k) / limit;
       if (d > w.slot_score[s]) w.slot_score[s] = d;
@@ -79,6 +82,7 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
   }
   for (std::size_t i = 0; i < m.signature_slots.size(); ++i) {
     const SignatureSlot& ss = m.signature_slots[i];
+    if (ss.forces) continue;
     for (std::size_t k = 0; k < 2; ++k) {
       const double d = directional(ss.offset + k) / limit;
       w.group_score[ss.group] = std::max(w.group_score[ss.group], d);

@@ -57,7 +57,6 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
   if (!(o.harmonic_tolerance >= 0.0) || o.harmonic_tolerance > 0.2) {
     return Error{at + "options.harmonic_tolerance must be in [0, 0.2]"};
   }
-  if (!(o.alarm_factor >= 1.0)) return Error{at + "options.alarm_factor must be >= 1"};
   if (!(o.false_alarm_rate > 0.0 && o.false_alarm_rate < 0.5)) {
     return Error{at + fmt::format("options.false_alarm_rate must be in (0, 0.5), got {}",
                                   o.false_alarm_rate)};
@@ -295,6 +294,16 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
     for (const TrainShaft& s : train.shafts) impl->envelope_names.push_back(kind + s.name);
   }
   impl->indicator_count = offset + impl->envelope_names.size();
+  // The forces' entries are not scored (indicator_scoring_stage.h): the z limit counts the rest.
+  for (const ConditionSlot& cs : impl->condition_slots) {
+    if (impl->condition_signals[cs.signal].source != ConditionSource::kForce) {
+      impl->scored_indicator_count += cs.count;
+    }
+  }
+  for (const SignatureSlot& ss : impl->signature_slots) {
+    if (!ss.forces) impl->scored_indicator_count += 2;
+  }
+  impl->scored_indicator_count += impl->envelope_names.size();
 
   impl->expect.machine_id = id;
   impl->expect.channels = setup.block_channels;

@@ -85,6 +85,7 @@ struct MachineContext {
   std::size_t signature_offset = 0;
   std::size_t envelope_offset = 0;     // first envelope entry in the indicator vector
   std::size_t indicator_count = 0;     // length of the indicator vector
+  std::size_t scored_indicator_count = 0;  // entries that can raise the block's score
   std::vector<std::string> envelope_names;  // "envelope_raw_<shaft>", "envelope_rec_<shaft>"
 
   double band_lo = 0.0;       // analysis band, Hz
