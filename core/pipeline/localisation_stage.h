@@ -17,9 +17,14 @@
 //     families both were right about half the time: the lumped model couples the meshes
 //     through the shared shaft's rotation, and an additive pulse's comb spreads over every
 //     mesh's neighbourhood.)
+//  The shaft evidence accumulates over the blocks at or above the clear level (the fault's
+//  blocks) and decays by half on each quiet block: one block's noisy evidence does not name
+//  the shaft (MachineState keeps the sums).
 //  3. The GEARS: the group's gears on the chosen mesh(es). Two gears with the same rate on the
 //     same mesh (seed Table 1's G3 and G4) remain joint candidates: nothing separates them.
 #pragma once
+
+#include <vector>
 
 #include "core/pipeline/pipeline_stage.h"
 
@@ -30,6 +35,9 @@ class LocalisationStage final : public PipelineStage {
   const char* name() const noexcept override { return "localisation"; }
   Status Configure(const MachineContext& machine, BlockWorkspace& work) override;
   RejectReason Process(StageContext& ctx) noexcept override;
+
+ private:
+  std::vector<double> group_excess_;  // per rate group, this block
 };
 
 }  // namespace gearpath

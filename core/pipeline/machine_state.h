@@ -41,6 +41,9 @@ struct MachineState {
   HealthyMean criterion_healthy;                     // per path: dominant-path criterion
   HealthyMean path_force_healthy;                    // per path: force on the sideband lines
   std::optional<AlarmModel> alarm;                   // persistence, hysteresis, clear delay
+  // Shaft evidence accumulated over recent exceeding blocks, per rate group
+  // (localisation_stage.h).
+  std::vector<double> group_excess_sum;
   bool learning = true;                              // indicator_baseline is incomplete
 };
 
