@@ -90,7 +90,8 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
     v.candidate_names.push_back(t.gear_names[g]);
   }
   if (!v.candidates.empty()) {
-    v.gear = v.candidates.front();
+    const int best = w.localisation.best_gear;
+    v.gear = best >= 0 && (mask >> best & 1u) ? best : v.candidates.front();
     v.gear_name = t.gear_names[static_cast<std::size_t>(v.gear)];
     v.shaft = t.gear_shaft[static_cast<std::size_t>(v.gear)];
     v.shaft_name = t.shaft_names[static_cast<std::size_t>(v.shaft)];

@@ -78,6 +78,7 @@ struct BlockWorkspace {
   struct Localisation {
     int group = -1;                 // rate group whose indicators carry the anomaly
     std::uint32_t gear_mask = 0;    // candidate gears (bit g = gear g); 0 = none
+    int best_gear = -1;             // the most likely of them (on the best-evidenced mesh)
     int mesh = -1;                  // the one mesh chosen; -1 = none or several
     double mesh_evidence = 0.0;     // chosen mesh's evidence (z / limit)
     double other_evidence = 0.0;    // best other mesh's evidence (z / limit)

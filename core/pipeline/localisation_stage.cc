@@ -61,6 +61,10 @@ std::array<double, kMaxMeshesPerShaft> MeshEvidence(const MachineContext& m,
   return evidence;
 }
 
+int GearMesh(const MachineContext& m, int gear) noexcept {
+  return m.topology.gear_mesh[static_cast<std::size_t>(gear)];
+}
+
 }  // namespace
 
 RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
@@ -142,13 +146,24 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
     }
   }
 
-  // 3. The gears of the group on the chosen mesh(es).
+  // 3. The gears of the group on the chosen mesh(es); the most likely one sits on the mesh
+  // with the strongest evidence.
+  std::size_t top = 0;
+  for (std::size_t i = 1; i < rg.meshes.size(); ++i) {
+    if (evidence[i] > evidence[top]) top = i;
+  }
+  const int best_mesh = rg.meshes.empty() ? -1 : rg.meshes[top];
   for (std::size_t i = 0; i < rg.gears.size(); ++i) {
     bool on_chosen = rg.meshes.empty() || rg.gear_meshes[i] < 0;
     for (std::size_t j = 0; j < rg.meshes.size(); ++j) {
       on_chosen = on_chosen || ((chosen >> j & 1u) && rg.gear_meshes[i] == rg.meshes[j]);
     }
-    if (on_chosen) loc.gear_mask |= 1u << rg.gears[i];
+    if (!on_chosen) continue;
+    loc.gear_mask |= 1u << rg.gears[i];
+    if (loc.best_gear < 0 || (rg.gear_meshes[i] == best_mesh &&
+                              GearMesh(m, loc.best_gear) != best_mesh)) {
+      loc.best_gear = rg.gears[i];
+    }
   }
   return RejectReason::kNone;
 }
