@@ -1,6 +1,7 @@
 #include "core/pipeline/condition_indicator_stage.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <complex>
 #include <utility>
@@ -16,18 +17,12 @@ namespace {
 // Distance (in orders of `other`) under which a line counts as a harmonic of another rate.
 constexpr double kCommonOrderTolerance = 0.1;
 
-std::size_t NextPowerOfTwo(std::size_t v) {
-  std::size_t p = 4;
-  while (p < v) p <<= 1;
-  return p;
-}
-
 }  // namespace
 
 Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWorkspace& work) {
   const double fs = machine.setup.options.sample_rate_hz;
   // A whole revolution must fit in the block, so M (>= fs / f) never needs to exceed it.
-  const std::size_t max_points = std::min<std::size_t>(NextPowerOfTwo(work.n), 1u << 16);
+  const std::size_t max_points = std::clamp<std::size_t>(std::bit_ceil(work.n), 4, std::size_t{1} << 16);
   auto tsa = SynchronousAverage::Create(work.n, fs, max_points);
   if (!tsa) return Error{"synchronous average: " + tsa.error()};
   tsa_.emplace(std::move(tsa.value()));

@@ -2,10 +2,9 @@
 // every expected value below is computed by hand from the signal's definition.
 //
 // This file also proves that SynchronousAverage::Process (core/dsp) and
-// GearConditionIndicators::Compute allocate nothing. test_diagnosis shares one counting
-// operator new among its files (the diagnosis_alloc counters); the definitions here are weak
-// and identical to the others', so the link works whichever files are present, and
-// CountingAllocatorIsTheOneInUse guards against a vacuous pass.
+// GearConditionIndicators::Compute allocate nothing, with test_diagnosis' one counting
+// operator new (robust_baseline_test.cc); CountingAllocatorIsTheOneInUse guards against a
+// vacuous pass.
 #include "core/diagnosis/gear_condition_indicators.h"
 
 #include <gtest/gtest.h>
@@ -25,18 +24,11 @@
 #include "core/dsp/spectrum.h"
 #include "core/dsp/synchronous_average.h"
 
+// The counting operator new of this executable lives in robust_baseline_test.cc.
 namespace diagnosis_alloc {
-[[gnu::weak]] bool counting = false;
-[[gnu::weak]] long allocations = 0;
+extern bool counting;
+extern long allocations;
 }  // namespace diagnosis_alloc
-
-[[gnu::weak]] void* operator new(std::size_t size) {
-  if (diagnosis_alloc::counting) ++diagnosis_alloc::allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-[[gnu::weak]] void operator delete(void* p) noexcept { std::free(p); }
-[[gnu::weak]] void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace gearpath {
 namespace {
