@@ -108,7 +108,10 @@ Qos CommonQos(TopicClass topic_class) {
                                               kMaxMachinesPerDomain, kBlockHistoryDepth);
       break;
     case TopicClass::kLatestResult:
-      qos.TransientLocal().KeepLast(1).DurabilityServiceKeepLast(1);
+      // Keep-last kResultHistoryDepth: a reliable subscriber that falls behind for a moment
+      // (a loaded host) still receives every block's result; late joiners get only the latest
+      // (durability-service depth 1).
+      qos.TransientLocal().KeepLast(kResultHistoryDepth).DurabilityServiceKeepLast(1);
       break;
     case TopicClass::kStatus:
       qos.TransientLocal().KeepLast(1).DurabilityServiceKeepLast(1).Deadline(kStatusDeadline);

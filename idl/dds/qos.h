@@ -54,6 +54,7 @@ enum class TopicClass {
 
 // Profile parameters (see docs/topics.md).
 inline constexpr std::int32_t kBlockHistoryDepth = 16;      // blocks buffered per machine
+inline constexpr std::int32_t kResultHistoryDepth = 32;     // results buffered per machine
 inline constexpr std::int32_t kMaxMachinesPerDomain = 256;  // instance bound for resource limits
 inline constexpr std::chrono::seconds kMaxBlockingTime{1};
 inline constexpr std::chrono::seconds kStatusPeriod{1};
