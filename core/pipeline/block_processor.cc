@@ -102,7 +102,6 @@ Status InitialiseState(const MachineContext& m, MachineState& st) {
   st.learning = true;
   st.residual_variance_healthy.mean.assign(m.condition_slots.size(), 0.0);
   st.criterion_healthy.mean.assign(m.paths, 0.0);
-  st.path_force_healthy.mean.assign(m.paths, 0.0);
   st.group_excess_sum.assign(m.rate_groups.size(), 0.0);
   return Status::Ok();
 }
@@ -175,7 +174,6 @@ void BlockProcessor::Impl::ResetLearning() noexcept {
   state.learning = true;
   state.residual_variance_healthy.Reset();
   state.criterion_healthy.Reset();
-  state.path_force_healthy.Reset();
   std::fill(state.group_excess_sum.begin(), state.group_excess_sum.end(), 0.0);
 }
 

@@ -35,8 +35,6 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   w.path_energy.assign(paths, 0.0);
   w.path_share.assign(paths, 0.0);
   w.path_criterion.assign(paths, 0.0);
-  w.path_force.assign(paths, 0.0);
-  w.mesh_evidence.assign(machine.unit_meshes.size(), 0.0);
   w.best_channel.assign(paths, 0);
   w.dominant_time.assign(channels * n, 0.0);
   w.indicators.assign(machine.indicator_count, 0.0);

@@ -50,8 +50,6 @@ struct BlockWorkspace {
   std::vector<double> path_energy;     // per path: analysis-band contribution energy
   std::vector<double> path_share;      // per path: energy share
   std::vector<double> path_criterion;  // per path: dominant-path criterion (after excess)
-  std::vector<double> path_force;      // per path: |F|^2 on the sideband lines
-  std::vector<double> mesh_evidence;   // per mesh: force-sideband excess over healthy
   std::vector<int> best_channel;       // per path: FRF row where its contribution is largest
 
   int dominant = -1;                 // dominant path; -1 = none
@@ -80,14 +78,9 @@ struct BlockWorkspace {
     std::uint32_t gear_mask = 0;    // candidate gears (bit g = gear g); 0 = none
     int best_gear = -1;             // the most likely of them (on the best-evidenced mesh)
     int mesh = -1;                  // the one mesh chosen; -1 = none or several
-    double mesh_evidence = 0.0;     // chosen mesh's evidence (z / limit)
-    double other_evidence = 0.0;    // best other mesh's evidence (z / limit)
+    double mesh_evidence = 0.0;     // best mesh's transfer-signature evidence (fraction)
+    double other_evidence = 0.0;    // best other mesh's evidence (fraction)
     int mesh_count = 0;             // meshes the group's gears sit on
-    double group_excess = 0.0;      // chosen group's exclusive-residual excess, units^2
-    double other_group_excess = 0.0;
-    // Per mesh of the group: transfer-signature parallel and orthogonal sideband excess over
-    // healthy (measured channels), units^2.
-    std::array<double, 4> parallel{}, orthogonal{};
   } localisation;
 
   std::vector<Cd> one_spec;         // bins: scratch spectrum of one signal

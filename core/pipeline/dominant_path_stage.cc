@@ -56,23 +56,6 @@ RejectReason DominantPathStage::Process(StageContext& ctx) noexcept {
       }
     }
   }
-  // Mesh evidence: the bearing FORCES' energy on the sideband lines in excess of healthy, split
-  // over the meshes each path sees. Forces locate the source; contributions also weigh the
-  // housing's transfer, which favours whichever seat is most mobile.
-  if (st.learning && have_speed) st.path_force_healthy.Add(w.path_force);
-  std::fill(w.mesh_evidence.begin(), w.mesh_evidence.end(), 0.0);
-  if (!st.learning && st.path_force_healthy.blocks > 0) {
-    for (std::size_t p = 0; p < m.paths; ++p) {
-      const auto& seen = m.topology.path_meshes[p];
-      if (seen.empty()) continue;
-      const double excess = std::max(0.0, w.path_force[p] - st.path_force_healthy.mean[p]);
-      for (int mesh : seen) {
-        w.mesh_evidence[static_cast<std::size_t>(mesh)] +=
-            excess / static_cast<double>(seen.size());
-      }
-    }
-  }
-
   const int dominant = SelectDominantPath(w.path_criterion);
   w.dominant = dominant;
   BlockResult& out = ctx.out;

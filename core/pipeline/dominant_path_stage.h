@@ -1,8 +1,7 @@
 // DominantPathStage: which transfer path carries the fault (seed Sect. 4.2), judged by the
 // configured criterion (sideband energy by default, band energy, or each path's own envelope
 // indicator), as its EXCESS over the path's healthy level when a baseline is learned
-// (AnalysisOptions::criterion_over_baseline); the mesh evidence (each path's bearing-force
-// sideband excess over healthy, split over the meshes it sees); the indicator channel; and the
+// (AnalysisOptions::criterion_over_baseline); the indicator channel; and the
 // dominant path's contribution back in time at every channel (Algorithm 2's first step).
 #pragma once
 

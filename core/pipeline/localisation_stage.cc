@@ -28,8 +28,8 @@ namespace {
 // orthogonal excess, as a fraction of the total over the group's meshes, averaged over the two
 // sensor arrays (their units differ).
 std::array<double, kMaxMeshesPerShaft> MeshEvidence(const MachineContext& m,
-                                                    const BlockWorkspace& w, std::size_t g,
-                                                    BlockWorkspace::Localisation* loc) noexcept {
+                                                    const BlockWorkspace& w,
+                                                    std::size_t g) noexcept {
   const std::size_t meshes = m.rate_groups[g].meshes.size();
   std::array<double, kMaxMeshesPerShaft> evidence{};
   int arrays = 0;
@@ -39,10 +39,6 @@ std::array<double, kMaxMeshesPerShaft> MeshEvidence(const MachineContext& m,
       if (ss.group != g || ss.forces != forces) continue;
       par[ss.mesh] = w.excess[ss.offset];
       orth[ss.mesh] = w.excess[ss.offset + 1];
-    }
-    if (!forces && loc != nullptr) {
-      loc->parallel = par;
-      loc->orthogonal = orth;
     }
     std::array<double, kMaxMeshesPerShaft> e{};
     double total = 0.0;
@@ -108,10 +104,6 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
     g = static_cast<std::size_t>(std::max_element(w.group_score.begin(), w.group_score.end()) -
                                  w.group_score.begin());
   }
-  loc.group_excess = st.group_excess_sum[g];
-  for (std::size_t i = 0; i < groups; ++i) {
-    if (i != g) loc.other_group_excess = std::max(loc.other_group_excess, st.group_excess_sum[i]);
-  }
   const RateGroup& rg = m.rate_groups[g];
   loc.group = static_cast<int>(g);
   loc.mesh_count = static_cast<int>(rg.meshes.size());
@@ -119,7 +111,7 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
   // 2. The mesh, when the group's gears sit on several: this block's transfer-signature
   // evidence (accumulating it over blocks, like the shaft's, named the right gear less often
   // on the evaluation families: 39 % against 47 %).
-  const std::array<double, kMaxMeshesPerShaft> evidence = MeshEvidence(m, w, g, &loc);
+  const std::array<double, kMaxMeshesPerShaft> evidence = MeshEvidence(m, w, g);
   std::uint32_t chosen = 0;  // bit i = rg.meshes[i]
   if (rg.meshes.size() == 1) {
     chosen = 1u;

@@ -39,7 +39,6 @@ struct MachineState {
   HealthyMean residual_variance_healthy;             // per condition slot: NA4's reference
   std::optional<HealthyBaseline> envelope_baseline;  // published envelope thresholds
   HealthyMean criterion_healthy;                     // per path: dominant-path criterion
-  HealthyMean path_force_healthy;                    // per path: force on the sideband lines
   std::optional<AlarmModel> alarm;                   // persistence, hysteresis, clear delay
   // Shaft evidence accumulated over recent exceeding blocks, per rate group
   // (localisation_stage.h).

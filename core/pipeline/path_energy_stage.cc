@@ -28,7 +28,6 @@ RejectReason PathEnergyStage::Process(StageContext& ctx) noexcept {
     const auto pi = static_cast<Eigen::Index>(p);
     double band = 0.0;
     double side = 0.0;
-    double force = 0.0;
     double best_e = -1.0;
     int best = 0;
     for (std::size_t c = 0; c < m.channels; ++c) {
@@ -40,10 +39,7 @@ RejectReason PathEnergyStage::Process(StageContext& ctx) noexcept {
         const std::complex<double> f = w.forces(pi, i);
         const double e = std::norm(w.map.frf.at[static_cast<std::size_t>(i)](ci, pi) * f);
         channel_energy += e;
-        if (w.sideband_mask[k]) {
-          side += e;
-          if (c == 0) force += std::norm(f);
-        }
+        if (w.sideband_mask[k]) side += e;
       }
       band += channel_energy;
       if (channel_energy > best_e) {
@@ -51,7 +47,6 @@ RejectReason PathEnergyStage::Process(StageContext& ctx) noexcept {
         best = static_cast<int>(c);
       }
     }
-    w.path_force[p] = force;
     w.path_energy[p] = band;
     w.path_criterion[p] =
         o.criterion == AnalysisOptions::DominantCriterion::kBandEnergy ? band : side;

@@ -1,8 +1,8 @@
 // PathEnergyStage: what each transfer path carries in this block (seed Eq. 45,
 // C_cj = H_d,cj F_j): its contribution energy over the analysis band (summed over channels)
 // and its share, its energy on the mesh sideband lines h f_m +/- k f_s (the default
-// dominant-path criterion, docs/diagnosis.md), its FORCE's energy on those lines (the mesh
-// evidence), and the FRF row where its contribution is largest (its indicator channel).
+// dominant-path criterion, docs/diagnosis.md), and the FRF row where its contribution is
+// largest (its indicator channel).
 #pragma once
 
 #include "core/pipeline/pipeline_stage.h"
