@@ -47,6 +47,42 @@ Result<HealthyBaseline> HealthyBaseline::Configured(std::span<const double> thre
   return b;
 }
 
+Result<HealthyBaseline> HealthyBaseline::FromState(const HealthyBaselineState& state) {
+  if (state.configured) return Error{"healthy baseline state: configured thresholds are not state"};
+  auto made = Create(state.mean.size(), state.options);
+  if (!made) return Error{"healthy baseline state: " + made.error()};
+  if (state.m2.size() != state.mean.size()) {
+    return Error{"healthy baseline state: m2 has " + std::to_string(state.m2.size()) +
+                 " values, mean " + std::to_string(state.mean.size())};
+  }
+  if (state.count < 0 || state.count > state.options.blocks) {
+    return Error{"healthy baseline state: count must be in 0.." +
+                 std::to_string(state.options.blocks) + ", got " + std::to_string(state.count)};
+  }
+  for (std::size_t i = 0; i < state.mean.size(); ++i) {
+    if (!std::isfinite(state.mean[i]) || !std::isfinite(state.m2[i]) || state.m2[i] < 0.0) {
+      return Error{"healthy baseline state: mean/m2[" + std::to_string(i) +
+                   "] must be finite (m2 >= 0)"};
+    }
+  }
+  HealthyBaseline& b = made.value();
+  b.count_ = state.count;
+  b.mean_ = state.mean;
+  b.m2_ = state.m2;
+  if (b.count_ >= b.options_.blocks) b.Finalise();
+  return made;
+}
+
+HealthyBaselineState HealthyBaseline::State() const {
+  HealthyBaselineState s;
+  s.options = options_;
+  s.configured = configured_;
+  s.count = count_;
+  s.mean = mean_;
+  s.m2 = m2_;
+  return s;
+}
+
 void HealthyBaseline::Add(std::span<const double> indicators) noexcept {
   if (learned_ || indicators.size() != mean_.size()) return;
   for (double v : indicators) {

@@ -26,12 +26,26 @@ struct BaselineOptions {
   double floor = 1e-12;     // absolute lowest threshold (> 0)
 };
 
+// Everything needed to resume a learned (or half-learned) baseline after a restart.
+struct HealthyBaselineState {
+  BaselineOptions options;
+  bool configured = false;  // configured thresholds: nothing learned, nothing to resume
+  int count = 0;            // blocks accepted so far
+  std::vector<double> mean;
+  std::vector<double> m2;   // Welford sums of squared deviations
+};
+
 class HealthyBaseline {
  public:
   // `indicators` = number of indicators learned in parallel (e.g. shafts x {raw, rec}).
   static Result<HealthyBaseline> Create(std::size_t indicators, const BaselineOptions& options);
   // Fixed thresholds (all > 0 and finite); learned() is true from the start.
   static Result<HealthyBaseline> Configured(std::span<const double> thresholds);
+
+  // Validates sizes, ranges and finiteness (messages name the field); a count that reached
+  // options.blocks gives a learned baseline with its thresholds recomputed.
+  static Result<HealthyBaseline> FromState(const HealthyBaselineState& state);
+  HealthyBaselineState State() const;
 
   // Adds one healthy block's indicators (size must match; non-finite values skip the block).
   // Once `blocks` were added the thresholds are fixed. noexcept, no allocation.

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <exception>
 #include <memory>
 #include <utility>
@@ -130,6 +132,7 @@ struct Shape {
 struct BlockProcessor::Impl {
   MachineContext machine;
   MachineState state;
+  std::uint64_t fingerprint = 0;
   std::vector<std::unique_ptr<Shape>> shapes;  // at most kMaxShapes
   Shape* last_shape = nullptr;                 // shape of the last accepted block
   std::uint64_t use_counter = 0;
@@ -188,6 +191,7 @@ Result<BlockProcessor> BlockProcessor::Create(MachineSetup setup) {
   auto impl = std::make_unique<Impl>();
   impl->machine = std::move(machine.value());
   if (Status st = InitialiseState(impl->machine, impl->state); !st) return Error{st.error()};
+  impl->fingerprint = LearnedStateFingerprint(impl->machine);
   impl->shapes.reserve(kMaxShapes);
   return BlockProcessor(std::move(impl));
 }
@@ -304,6 +308,104 @@ std::span<const std::string> BlockProcessor::ConditionIndicatorNames(
                                : std::span<const std::string>{};
 }
 void BlockProcessor::ResetBaseline() noexcept { impl_->ResetLearning(); }
+
+LearnedState BlockProcessor::ExportLearnedState() const {
+  const MachineState& st = impl_->state;
+  LearnedState s;
+  s.fingerprint = impl_->fingerprint;
+  s.learning = st.learning;
+  s.indicator_baseline = st.indicator_baseline->State();
+  HealthyBaselineState envelope = st.envelope_baseline->State();
+  if (!envelope.configured) s.envelope_baseline = std::move(envelope);
+  s.residual_variance_healthy = st.residual_variance_healthy.mean;
+  s.residual_variance_blocks = st.residual_variance_healthy.blocks;
+  s.criterion_healthy = st.criterion_healthy.mean;
+  s.criterion_blocks = st.criterion_healthy.blocks;
+  s.alarm = st.alarm->State();
+  s.group_excess_sum = st.group_excess_sum;
+  return s;
+}
+
+Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
+  const Impl& im = *impl_;
+  const MachineState& now = im.state;
+  if (s.fingerprint != im.fingerprint) {
+    return Error{fmt::format("the saved baseline measured something else (fingerprint {:016x}, "
+                             "this configuration {:016x}: FRF set, channels, gear train or "
+                             "indicator options changed)",
+                             s.fingerprint, im.fingerprint)};
+  }
+  auto size_check = [](const char* what, std::size_t want, std::size_t got) -> Status {
+    if (want == got) return Status::Ok();
+    return Error{fmt::format("{} has {} entries, this machine {}", what, got, want)};
+  };
+  for (Status st : {size_check("residual_variance_healthy",
+                               now.residual_variance_healthy.mean.size(),
+                               s.residual_variance_healthy.size()),
+                    size_check("criterion_healthy", now.criterion_healthy.mean.size(),
+                               s.criterion_healthy.size()),
+                    size_check("group_excess_sum", now.group_excess_sum.size(),
+                               s.group_excess_sum.size()),
+                    size_check("indicator_baseline", now.indicator_baseline->indicators(),
+                               static_cast<std::size_t>(s.indicator_baseline.indicators))}) {
+    if (!st) return st;
+  }
+  auto indicator = RobustBaseline::FromState(s.indicator_baseline);
+  if (!indicator) return Error{indicator.error()};
+  std::optional<HealthyBaseline> envelope;
+  if (s.envelope_baseline) {
+    auto e = HealthyBaseline::FromState(*s.envelope_baseline);
+    if (!e) return Error{e.error()};
+    if (e->thresholds().size() != now.envelope_baseline->thresholds().size()) {
+      return Error{"envelope baseline size differs"};
+    }
+    envelope.emplace(std::move(e.value()));
+  }
+  // Alarm options from the configuration in force win: a changed window or k restarts the
+  // alarm model (the baseline is kept).
+  const AlarmOptions& want = now.alarm->options();
+  const AlarmOptions& had = s.alarm.options;
+  const bool same_alarm = want.n == had.n && want.suspect_k == had.suspect_k &&
+                          want.alarm_k == had.alarm_k && want.clear_level == had.clear_level &&
+                          want.clear_blocks == had.clear_blocks;
+  std::optional<AlarmModel> alarm;
+  if (same_alarm) {
+    auto a = AlarmModel::FromState(s.alarm);
+    if (!a) return Error{a.error()};
+    alarm.emplace(std::move(a.value()));
+  }
+  for (const auto* v : {&s.residual_variance_healthy, &s.criterion_healthy, &s.group_excess_sum}) {
+    for (double x : *v) {
+      if (!std::isfinite(x)) return Error{"a healthy level or evidence sum is not finite"};
+    }
+  }
+  if (s.residual_variance_blocks < 0 || s.criterion_blocks < 0) {
+    return Error{"negative block counts"};
+  }
+  if (s.learning == indicator->learned()) {
+    return Error{"learning flag contradicts the indicator baseline"};
+  }
+  // Everything checked: commit.
+  MachineState& st = impl_->state;
+  st.indicator_baseline.emplace(std::move(indicator.value()));
+  if (envelope) st.envelope_baseline.emplace(std::move(*envelope));
+  if (alarm) {
+    st.alarm.emplace(std::move(*alarm));
+  } else {
+    st.alarm->Reset();
+  }
+  st.learning = s.learning;
+  st.residual_variance_healthy.mean = s.residual_variance_healthy;
+  st.residual_variance_healthy.blocks = s.residual_variance_blocks;
+  st.criterion_healthy.mean = s.criterion_healthy;
+  st.criterion_healthy.blocks = s.criterion_blocks;
+  st.group_excess_sum = s.group_excess_sum;
+  return Status::Ok();
+}
+
+std::uint64_t BlockProcessor::learned_state_fingerprint() const noexcept {
+  return impl_->fingerprint;
+}
 const MachineSetup& BlockProcessor::setup() const noexcept { return impl_->machine.setup; }
 const BlockExpectations& BlockProcessor::expectations() const noexcept {
   return impl_->machine.expect;

@@ -49,6 +49,7 @@
 #include "core/frf/frf_set.h"
 #include "core/inverse/identification_operator.h"
 #include "core/pipeline/block_validation.h"
+#include "core/pipeline/learned_state.h"
 
 namespace gearpath {
 
@@ -292,6 +293,15 @@ class BlockProcessor {
   int baseline_blocks_needed() const noexcept;
   // Forget the learned baseline (e.g. after maintenance) and learn again.
   void ResetBaseline() noexcept;
+
+  // What this machine has learned (core/pipeline/learned_state.h), to persist it or carry it
+  // over a reload. Allocates; call between blocks.
+  LearnedState ExportLearnedState() const;
+  // Resumes from `state`, or refuses and changes nothing: a fingerprint that is not this
+  // processor's (the message says the baseline measured something else) or an inconsistent
+  // part (the message names it). Alarm options that differ restart the alarm model only.
+  Status ImportLearnedState(const LearnedState& state);
+  std::uint64_t learned_state_fingerprint() const noexcept;
 
   // Names of the entries of BlockConditionIndicators::value of rate group `group` (the
   // indicators, then the group's per-mesh sideband energies, then the exclusive residual).

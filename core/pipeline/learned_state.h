@@ -1,0 +1,41 @@
+// LearnedState: what one machine has learned, detached from its BlockProcessor, so that a
+// restart or a reload resumes the judgement instead of relearning. Relearning is not harmless:
+// a baseline learned while a fault is present takes the fault for healthy, and the fault is
+// then reported as no_fault.
+//
+// The fingerprint says what the baseline measures: a state is only ever resumed by a processor
+// whose FRF set, channels, gear train, sample rate, indicator layout and the analysis options
+// that shape indicator values are the same (LearnedStateFingerprint). The false-alarm rate
+// (the z limit is recomputed from it) and the mesh decision may change without a relearn; alarm
+// options that changed restart the alarm model, keeping the baseline.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/diagnosis/alarm_model.h"
+#include "core/diagnosis/healthy_baseline.h"
+#include "core/diagnosis/robust_baseline.h"
+
+namespace gearpath {
+
+struct MachineContext;
+
+struct LearnedState {
+  std::uint64_t fingerprint = 0;
+  bool learning = true;
+  RobustBaselineState indicator_baseline;
+  std::optional<HealthyBaselineState> envelope_baseline;  // none: thresholds are configured
+  std::vector<double> residual_variance_healthy;  // per condition slot (NA4's reference)
+  int residual_variance_blocks = 0;
+  std::vector<double> criterion_healthy;          // per path (dominant-path criterion)
+  int criterion_blocks = 0;
+  AlarmModelState alarm;
+  std::vector<double> group_excess_sum;           // per rate group (localisation evidence)
+};
+
+// FNV-1a over everything that shapes the indicator vector and its values (header comment).
+std::uint64_t LearnedStateFingerprint(const MachineContext& machine);
+
+}  // namespace gearpath

@@ -1,0 +1,162 @@
+#include "core/pipeline/learned_state_json.h"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace gearpath {
+namespace {
+
+using nlohmann::json;
+
+json Mean(const std::vector<double>& mean, int blocks) {
+  return json{{"blocks", blocks}, {"mean", mean}};
+}
+
+// nlohmann converts a float to int with a plain cast (undefined for 1e300): demand an
+// integer that fits.
+int Int(const json& parent, const char* key) {
+  const json& v = parent.at(key);
+  if (!v.is_number_integer()) throw std::invalid_argument(std::string(key) + ": not an integer");
+  const auto x = v.get<std::int64_t>();
+  if ((v.is_number_unsigned() && v.get<std::uint64_t>() > INT32_MAX) || x < INT32_MIN ||
+      x > INT32_MAX) {
+    throw std::out_of_range(std::string(key) + ": out of range");
+  }
+  return static_cast<int>(x);
+}
+
+std::vector<int> Ints(const json& parent, const char* key) {
+  const json& v = parent.at(key);
+  if (!v.is_array()) throw std::invalid_argument(std::string(key) + ": not an array");
+  std::vector<int> out;
+  for (const json& e : v) {
+    if (!e.is_number_integer() || e.get<std::int64_t>() < INT32_MIN ||
+        e.get<std::int64_t>() > INT32_MAX) {
+      throw std::invalid_argument(std::string(key) + ": entries must be integers");
+    }
+    out.push_back(static_cast<int>(e.get<std::int64_t>()));
+  }
+  return out;
+}
+
+FaultState ParseFaultState(const std::string& name) {
+  for (FaultState s : {FaultState::kLearning, FaultState::kNoFault, FaultState::kSuspected,
+                       FaultState::kAlarm}) {
+    if (ToString(s) == name) return s;
+  }
+  throw std::invalid_argument("alarm.state: unknown fault state \"" + name + "\"");
+}
+
+}  // namespace
+
+json ToJson(const LearnedState& s) {
+  const RobustBaselineState& b = s.indicator_baseline;
+  json j;
+  j["fingerprint"] = fmt::format("{:016x}", s.fingerprint);
+  j["learning"] = s.learning;
+  j["indicator_baseline"] = {
+      {"blocks", b.blocks},
+      {"indicators", b.indicators},
+      {"count", b.count},
+      {"skipped", b.skipped},
+      {"relative_floor", b.relative_floor},
+      {"absolute_floor", b.absolute_floor},
+      {"log_value_floor", b.log_value_floor},
+      {"median", b.median},
+      {"scale", b.scale},
+      {"log_transform", b.log_transform},
+      {"samples", b.samples},
+  };
+  if (s.envelope_baseline) {
+    const HealthyBaselineState& e = *s.envelope_baseline;
+    j["envelope_baseline"] = {{"blocks", e.options.blocks}, {"k_sigma", e.options.k_sigma},
+                              {"min_margin", e.options.min_margin}, {"floor", e.options.floor},
+                              {"count", e.count},         {"mean", e.mean},
+                              {"m2", e.m2}};
+  } else {
+    j["envelope_baseline"] = nullptr;
+  }
+  j["residual_variance_healthy"] = Mean(s.residual_variance_healthy, s.residual_variance_blocks);
+  j["criterion_healthy"] = Mean(s.criterion_healthy, s.criterion_blocks);
+  const AlarmModelState& a = s.alarm;
+  j["alarm"] = {{"n", a.options.n},
+                {"suspect_k", a.options.suspect_k},
+                {"alarm_k", a.options.alarm_k},
+                {"clear_level", a.options.clear_level},
+                {"clear_blocks", a.options.clear_blocks},
+                {"state", std::string(ToString(a.state))},
+                {"exceed_bits", a.exceed_bits},
+                {"quiet_run", a.quiet_run},
+                {"blocks_in_state", a.blocks_in_state},
+                {"votes", a.votes}};
+  j["group_excess_sum"] = s.group_excess_sum;
+  return j;
+}
+
+Result<LearnedState> LearnedStateFromJson(const json& j) {
+  try {
+    LearnedState s;
+    const std::string fp = j.at("fingerprint").get<std::string>();
+    char* end = nullptr;
+    s.fingerprint = std::strtoull(fp.c_str(), &end, 16);
+    if (fp.size() != 16 || end != fp.c_str() + fp.size()) {
+      return Error{"fingerprint: expected 16 hex digits, got \"" + fp + "\""};
+    }
+    s.learning = j.at("learning").get<bool>();
+    const json& b = j.at("indicator_baseline");
+    RobustBaselineState& r = s.indicator_baseline;
+    r.blocks = Int(b, "blocks");
+    r.indicators = Int(b, "indicators");
+    r.count = Int(b, "count");
+    r.skipped = Int(b, "skipped");
+    r.relative_floor = b.at("relative_floor").get<double>();
+    r.absolute_floor = b.at("absolute_floor").get<double>();
+    r.log_value_floor = b.at("log_value_floor").get<double>();
+    r.median = b.at("median").get<std::vector<double>>();
+    r.scale = b.at("scale").get<std::vector<double>>();
+    r.log_transform = b.at("log_transform").get<std::vector<bool>>();
+    r.samples = b.at("samples").get<std::vector<double>>();
+    if (const json& e = j.at("envelope_baseline"); !e.is_null()) {
+      HealthyBaselineState h;
+      h.options.blocks = Int(e, "blocks");
+      h.options.k_sigma = e.at("k_sigma").get<double>();
+      h.options.min_margin = e.at("min_margin").get<double>();
+      h.options.floor = e.at("floor").get<double>();
+      h.count = Int(e, "count");
+      h.mean = e.at("mean").get<std::vector<double>>();
+      h.m2 = e.at("m2").get<std::vector<double>>();
+      s.envelope_baseline = std::move(h);
+    }
+    const json& rv = j.at("residual_variance_healthy");
+    s.residual_variance_healthy = rv.at("mean").get<std::vector<double>>();
+    s.residual_variance_blocks = Int(rv, "blocks");
+    const json& ch = j.at("criterion_healthy");
+    s.criterion_healthy = ch.at("mean").get<std::vector<double>>();
+    s.criterion_blocks = Int(ch, "blocks");
+    const json& a = j.at("alarm");
+    s.alarm.options.n = Int(a, "n");
+    s.alarm.options.suspect_k = Int(a, "suspect_k");
+    s.alarm.options.alarm_k = Int(a, "alarm_k");
+    s.alarm.options.clear_level = a.at("clear_level").get<double>();
+    s.alarm.options.clear_blocks = Int(a, "clear_blocks");
+    s.alarm.state = ParseFaultState(a.at("state").get<std::string>());
+    if (!a.at("exceed_bits").is_number_unsigned()) {
+      return Error{"learned state: alarm.exceed_bits: not an unsigned integer"};
+    }
+    s.alarm.exceed_bits = a.at("exceed_bits").get<std::uint64_t>();
+    s.alarm.quiet_run = Int(a, "quiet_run");
+    s.alarm.blocks_in_state = Int(a, "blocks_in_state");
+    s.alarm.votes = Ints(a, "votes");
+    s.group_excess_sum = j.at("group_excess_sum").get<std::vector<double>>();
+    return s;
+  } catch (const std::exception& e) {
+    // nlohmann names the missing key or the type it found ("type must be number, but is
+    // string"); out_of_range for ints too large for their field lands here as well.
+    return Error{std::string("learned state: ") + e.what()};
+  }
+}
+
+}  // namespace gearpath

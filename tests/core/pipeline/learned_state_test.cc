@@ -1,0 +1,169 @@
+// A machine's learned state survives export, JSON and import: a processor that resumes it
+// judges the next blocks exactly as the processor that learned it (the truth is the original
+// processor's own continuation on the same blocks), and a state is refused by a processor
+// whose configuration measures something else.
+#include "core/pipeline/learned_state.h"
+
+#include <gtest/gtest.h>
+
+#include "core/pipeline/learned_state_json.h"
+#include "tests/core/pipeline/simulated_machine.h"
+
+namespace gearpath {
+namespace {
+using namespace gearpath::testing;
+
+// Feeds the same `count` simulated blocks to both processors; expects identical judgements.
+void ExpectSameJudgement(BlockProcessor& a, BlockProcessor& b, GearboxSimulator& sim, int count,
+                         std::uint64_t& sequence) {
+  AccelBlock block;
+  BlockResult ra, rb;
+  for (int i = 0; i < count; ++i) {
+    sim.NextBlock(block);
+    block.sequence = sequence++;
+    ASSERT_TRUE(a.Process(block.view(), ra).accepted());
+    ASSERT_TRUE(b.Process(block.view(), rb).accepted());
+    EXPECT_EQ(ra.verdict.state, rb.verdict.state) << "block " << i;
+    EXPECT_EQ(ra.verdict.gear_name, rb.verdict.gear_name) << "block " << i;
+    EXPECT_EQ(ra.score.score, rb.score.score) << "block " << i;  // bit for bit
+    EXPECT_EQ(ra.score.exceed_count, rb.score.exceed_count) << "block " << i;
+    EXPECT_EQ(ra.score.limit_z, rb.score.limit_z);
+    for (std::size_t s = 0; s < ra.shafts.size(); ++s) {
+      EXPECT_EQ(ra.shafts[s].raw_threshold, rb.shafts[s].raw_threshold);
+    }
+  }
+}
+
+LearnedState ThroughJson(const LearnedState& s) {
+  // Text, not the json object: what the daemon writes and reads back.
+  const std::string text = ToJson(s).dump();
+  auto back = LearnedStateFromJson(nlohmann::json::parse(text));
+  EXPECT_TRUE(back.ok()) << back.error();
+  return back.ok() ? std::move(back.value()) : LearnedState{};
+}
+
+TEST(LearnedStateTest, AResumedMachineKeepsItsAlarmAndJudgesLikeTheOneThatLearned) {
+  const Machine& m = Table1Machine();
+  std::uint64_t seq = 1;
+  BlockProcessor learned = LearnedProcessor(m, seq);
+  GearboxSimulator broken = MakeSimulator(m, FaultType::kToothFracture, "G1", 21);
+  const BlockResult before = RunBlocks(learned, broken, 4, seq);
+  ASSERT_EQ(before.verdict.state, FaultState::kAlarm) << before.verdict.reason.view();
+
+  auto resumed = BlockProcessor::Create(MakeSetup(m));
+  ASSERT_TRUE(resumed.ok()) << resumed.error();
+  ASSERT_TRUE(resumed->ImportLearnedState(ThroughJson(learned.ExportLearnedState())).ok());
+  EXPECT_EQ(resumed->baseline_blocks_learned(), kBaselineBlocks);
+  // A fresh processor would learn the fracture as healthy; the resumed one goes on alarming.
+  ExpectSameJudgement(learned, resumed.value(), broken, 3, seq);
+}
+
+TEST(LearnedStateTest, ABaselineHalfLearnedIsFinishedWithTheRemainingBlocks) {
+  const Machine& m = Table1Machine();
+  auto a = BlockProcessor::Create(MakeSetup(m));
+  ASSERT_TRUE(a.ok());
+  std::uint64_t seq = 1;
+  GearboxSimulator healthy = MakeSimulator(m, FaultType::kNone, "", 7);
+  RunBlocks(a.value(), healthy, kBaselineBlocks / 2, seq);
+  auto b = BlockProcessor::Create(MakeSetup(m));
+  ASSERT_TRUE(b.ok());
+  ASSERT_TRUE(b->ImportLearnedState(ThroughJson(a->ExportLearnedState())).ok());
+  EXPECT_EQ(b->baseline_blocks_learned(), kBaselineBlocks / 2);
+  ExpectSameJudgement(a.value(), b.value(), healthy, kBaselineBlocks, seq);
+  EXPECT_EQ(b->baseline_blocks_learned(), kBaselineBlocks);
+}
+
+TEST(LearnedStateTest, AChangedAlarmWindowKeepsTheBaselineAndRestartsTheAlarmModel) {
+  const Machine& m = Table1Machine();
+  std::uint64_t seq = 1;
+  BlockProcessor learned = LearnedProcessor(m, seq);
+  MachineSetup s = MakeSetup(m);
+  s.options.alarm_window = 7;
+  s.options.false_alarm_rate = 0.001;  // judged differently, measured the same
+  auto p = BlockProcessor::Create(s);
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(p->learned_state_fingerprint(), learned.learned_state_fingerprint());
+  ASSERT_TRUE(p->ImportLearnedState(learned.ExportLearnedState()).ok());
+  GearboxSimulator healthy = MakeSimulator(m, FaultType::kNone, "", 11);
+  const BlockResult r = RunBlocks(p.value(), healthy, 1, seq);
+  EXPECT_NE(r.verdict.state, FaultState::kLearning);
+  EXPECT_EQ(r.score.window, 7);
+}
+
+TEST(LearnedStateTest, AStateIsRefusedByAMachineThatMeasuresSomethingElse) {
+  const Machine& m = Table1Machine();
+  std::uint64_t seq = 1;
+  BlockProcessor learned = LearnedProcessor(m, seq);
+  const LearnedState state = learned.ExportLearnedState();
+
+  MachineSetup other_frf = MakeSetup(m);
+  other_frf.frf_set.decoupled.at[10](0, 0) *= 1.01;  // a re-measured FRF set
+  MachineSetup other_floor = MakeSetup(m);
+  other_floor.options.scale_floor = 0.1;
+  const MachineSetup distinct = MakeSetup(MakeMachine(true));  // another gear train
+  for (const MachineSetup& s : {other_frf, other_floor, distinct}) {
+    auto p = BlockProcessor::Create(s);
+    ASSERT_TRUE(p.ok()) << p.error();
+    const Status st = p->ImportLearnedState(state);
+    ASSERT_FALSE(st.ok());
+    EXPECT_NE(st.error().find("measured something else"), std::string::npos) << st.error();
+    EXPECT_EQ(p->baseline_blocks_learned(), 0);  // nothing changed
+  }
+}
+
+TEST(LearnedStateTest, InconsistentPartsAreRefusedAndNamed) {
+  const Machine& m = Table1Machine();
+  std::uint64_t seq = 1;
+  BlockProcessor learned = LearnedProcessor(m, seq);
+  auto p = BlockProcessor::Create(MakeSetup(m));
+  ASSERT_TRUE(p.ok());
+
+  LearnedState short_scale = learned.ExportLearnedState();
+  short_scale.indicator_baseline.scale.pop_back();
+  Status st = p->ImportLearnedState(short_scale);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().find("scale"), std::string::npos) << st.error();
+
+  LearnedState bad_vote = learned.ExportLearnedState();
+  bad_vote.alarm.votes = {-3};
+  st = p->ImportLearnedState(bad_vote);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().find("votes"), std::string::npos) << st.error();
+
+  LearnedState nan_level = learned.ExportLearnedState();
+  nan_level.criterion_healthy[0] = std::nan("");
+  EXPECT_FALSE(p->ImportLearnedState(nan_level).ok());
+  EXPECT_EQ(p->baseline_blocks_learned(), 0);
+}
+
+TEST(LearnedStateJsonTest, MissingKeysAndWrongTypesAreNamedNotThrown) {
+  const Machine& m = Table1Machine();
+  std::uint64_t seq = 1;
+  BlockProcessor learned = LearnedProcessor(m, seq);
+  nlohmann::json j = ToJson(learned.ExportLearnedState());
+
+  nlohmann::json missing = j;
+  missing["alarm"].erase("quiet_run");
+  auto r = LearnedStateFromJson(missing);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().find("quiet_run"), std::string::npos) << r.error();
+
+  nlohmann::json wrong = j;
+  wrong["indicator_baseline"]["median"] = "many";
+  EXPECT_FALSE(LearnedStateFromJson(wrong).ok());
+
+  nlohmann::json huge = j;
+  huge["alarm"]["n"] = 1e300;  // does not fit an int
+  EXPECT_FALSE(LearnedStateFromJson(huge).ok());
+
+  nlohmann::json bad_state = j;
+  bad_state["alarm"]["state"] = "panic";
+  r = LearnedStateFromJson(bad_state);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().find("panic"), std::string::npos) << r.error();
+
+  EXPECT_FALSE(LearnedStateFromJson(nlohmann::json::array()).ok());
+}
+
+}  // namespace
+}  // namespace gearpath

@@ -1,0 +1,111 @@
+// The simulated Table-1 gearbox of the pipeline tests: model, gear train, its model FRF set on
+// the block's bin grid, a processor set-up and block helpers.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string>
+#include <utility>
+
+#include "core/diagnosis/train_layout.h"
+#include "core/model/gear_train.h"
+#include "core/model/lumped_gearbox_model.h"
+#include "core/pipeline/block_processor.h"
+#include "core/simulation/gearbox_simulator.h"
+#include "core/simulation/model_frf_set.h"
+
+namespace gearpath::testing {
+
+constexpr std::uint32_t kBlock = 8192;
+constexpr double kFs = 8000.0;
+constexpr int kBaselineBlocks = 6;
+
+struct Machine {
+  LumpedGearboxModel model;
+  GearTrain train;
+  FrfSet frf;
+};
+
+// Table 1 (distinct = false) or a variant whose G3 has 30 teeth, so the output shaft turns at
+// 10 * 28/40 * 30/34 = 6.18 Hz and no two gears share both a mesh and a shaft rate.
+inline Machine MakeMachine(bool distinct) {
+  GearboxParameters p = Table1Parameters();
+  GearTrain train = GearTrain::Table1();
+  if (distinct) {
+    p.stages[1].z_driver = 30;
+    for (GearSpec& g : train.gears) {
+      if (g.name == "G3") g.teeth = 30;
+    }
+  }
+  auto model = LumpedGearboxModel::Create(p);
+  EXPECT_TRUE(model.ok()) << model.error();
+  // FRF grid = the block's bins 1..N/2 (the mapping is then a copy; interpolation is tested
+  // in frf_grid_mapping_test.cc).
+  Eigen::VectorXd f(kBlock / 2);
+  for (Eigen::Index k = 0; k < f.size(); ++k) f[k] = static_cast<double>(k + 1) * kFs / kBlock;
+  auto set = MakeModelFrfSet(model.value(), train, f);
+  EXPECT_TRUE(set.ok()) << set.error();
+  return {std::move(model.value()), train, std::move(set.value())};
+}
+
+inline MachineSetup MakeSetup(const Machine& m) {
+  MachineSetup s;
+  s.machine_id = "sim";
+  s.frf_set = m.frf;
+  auto layout = TrainLayoutFromGearTrain(m.train);
+  EXPECT_TRUE(layout.ok()) << layout.error();
+  s.train = layout.value();
+  s.options.sample_rate_hz = kFs;
+  s.options.nominal_speed_hz = 10.0;
+  s.options.baseline_blocks = kBaselineBlocks;
+  return s;
+}
+
+inline GearboxSimulator MakeSimulator(const Machine& m, FaultType type, const std::string& gear,
+                               std::uint64_t seed, bool report_speed = true) {
+  SimulatorConfig c;
+  c.machine_id = "sim";
+  c.fault.type = type;
+  c.fault.gear = gear;
+  c.sample_rate_hz = kFs;
+  c.block_length = kBlock;
+  c.noise_relative = 0.05;
+  c.seed = seed;
+  c.report_speed = report_speed;
+  c.include_housing_channel = false;  // channels p1..p3 = the Eq. 22 FRF rows
+  auto sim = GearboxSimulator::Create(m.model, m.train, c);
+  EXPECT_TRUE(sim.ok()) << sim.error();
+  return std::move(sim.value());
+}
+
+// Feeds `count` blocks; returns the last result.
+inline BlockResult RunBlocks(BlockProcessor& p, GearboxSimulator& sim, int count,
+                      std::uint64_t& sequence) {
+  AccelBlock block;
+  BlockResult result;
+  for (int i = 0; i < count; ++i) {
+    sim.NextBlock(block);
+    block.sequence = sequence++;
+    const ProcessOutcome o = p.Process(block.view(), result);
+    EXPECT_TRUE(o.accepted()) << o.message.view();
+  }
+  return result;
+}
+
+inline BlockProcessor LearnedProcessor(const Machine& m, std::uint64_t& sequence) {
+  auto p = BlockProcessor::Create(MakeSetup(m));
+  EXPECT_TRUE(p.ok()) << p.error();
+  GearboxSimulator healthy = MakeSimulator(m, FaultType::kNone, "", 7);
+  const BlockResult r = RunBlocks(p.value(), healthy, kBaselineBlocks, sequence);
+  EXPECT_EQ(r.verdict.state, FaultState::kLearning);
+  EXPECT_EQ(p->baseline_blocks_learned(), kBaselineBlocks);
+  return std::move(p.value());
+}
+
+inline const Machine& Table1Machine() {
+  static const Machine m = MakeMachine(false);
+  return m;
+}
+
+}  // namespace gearpath::testing
