@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/io/json_read.h"
 #include "core/io/npy.h"
 
 namespace gearpath {
@@ -406,14 +407,13 @@ Status ValidateFrfSet(const FrfSet& set) {
 Result<FrfSet> ReadFrfSet(const fs::path& dir) {
   const fs::path manifest_path = dir / kFrfSetManifestName;
   const std::string mf = manifest_path.string();
-  std::ifstream in(manifest_path);
-  if (!in) return Error{mf + ": missing manifest (not an FRF set directory?)"};
-  Json root;
-  try {
-    root = Json::parse(in);
-  } catch (const Json::parse_error& e) {
-    return Error{mf + ": invalid JSON: " + e.what()};
+  if (!std::ifstream(manifest_path)) {
+    return Error{mf + ": missing manifest (not an FRF set directory?)"};
   }
+  // Bounded, exception-free parse: 1e999 or a manifest nested 100 000 deep is an error.
+  Result<Json> parsed = ReadJsonFile<Json>(manifest_path);
+  if (!parsed) return Error{parsed.error()};
+  const Json root = std::move(parsed.value());
   Manifest m(mf);
   if (!root.is_object()) return Error{mf + ": the manifest must be a JSON object"};
 
@@ -680,8 +680,12 @@ Status WriteFrfSet(const FrfSet& set, const fs::path& dir) {
     }
     manifest["coupled"] = {{"dofs", dofs}, {"blocks", blocks}};
   }
+  // Names are checked by ValidateFrfSet, but a name that is not UTF-8 must be an error, not
+  // a json::type_error thrown out of the writer.
+  Result<std::string> text = DumpJson(manifest, 2, where + kFrfSetManifestName);
+  if (!text) return Error{text.error()};
   std::ofstream out(dir / kFrfSetManifestName, std::ios::trunc);
-  out << manifest.dump(2) << "\n";
+  out << *text << "\n";
   out.close();
   if (!out) return Error{where + "write error on " + kFrfSetManifestName};
   return Status::Ok();

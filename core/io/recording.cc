@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <system_error>
 
+#include "core/io/json_read.h"
 #include "core/io/npy.h"
 
 namespace gearpath {
@@ -77,9 +78,11 @@ Status WriteManifest(const std::filesystem::path& dir, const json& manifest) {
   const auto final_path = dir / kRecordingManifestName;
   const auto tmp = dir / (std::string(kRecordingManifestName) + ".tmp");
   {
+    Result<std::string> text = DumpJson(manifest, 1, final_path.string());
+    if (!text) return Error{text.error()};
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) return Error{tmp.string() + ": cannot open for writing"};
-    out << manifest.dump(1) << '\n';
+    out << *text << '\n';
     if (!out) return Error{tmp.string() + ": write error"};
   }
   std::error_code ec;
@@ -113,6 +116,24 @@ std::string LayoutMismatch(const RecordingLayout& layout, const AccelBlockView& 
         std::bit_cast<std::uint64_t>(a.sensitivity) !=
             std::bit_cast<std::uint64_t>(b.sensitivity)) {
       return "channels[" + std::to_string(c) + "] differs from the recording's";
+    }
+  }
+  return {};
+}
+
+// A recording's manifest lists every block (about 60 bytes each): allow long recordings.
+constexpr JsonReadLimits kRecordingJsonLimits{kMaxJsonDepth, std::size_t{1} << 30};
+
+// Every string of the layout goes into the manifest, which must be UTF-8: checked when the
+// recording is opened, so a bad channel name fails before any file is written.
+std::string LayoutUtf8Problem(const RecordingLayout& layout) {
+  if (auto why = Utf8Problem(layout.machine_id)) return "machine_id is not UTF-8: " + *why;
+  for (std::size_t c = 0; c < layout.channels.size(); ++c) {
+    const ChannelInfo& ch = layout.channels[c];
+    for (const auto& [field, text] : {std::pair{"sensor", &ch.sensor}, std::pair{"unit", &ch.unit}}) {
+      if (auto why = Utf8Problem(*text)) {
+        return "channels[" + std::to_string(c) + "]." + field + " is not UTF-8: " + *why;
+      }
     }
   }
   return {};
@@ -229,26 +250,22 @@ bool MatchesLayout(const RecordingLayout& layout, const AccelBlockView& block) {
 }
 
 bool IsRecordingDirectory(const std::filesystem::path& dir) {
-  std::ifstream in(dir / kRecordingManifestName);
-  if (!in) return false;
-  try {
-    const json root = json::parse(in);
-    return root.is_object() && root.value("format", std::string()) == kRecordingFormatName;
-  } catch (const std::exception&) {
-    return false;
-  }
+  if (!std::ifstream(dir / kRecordingManifestName)) return false;
+  const Result<json> root = ReadJsonFile<json>(dir / kRecordingManifestName, kRecordingJsonLimits);
+  if (!root || !root->is_object()) return false;
+  const auto format = root->find("format");
+  return format != root->end() && format->is_string() &&
+         format->get_ref<const std::string&>() == kRecordingFormatName;
 }
 
 Result<Recording> ReadRecording(const std::filesystem::path& dir) {
   const std::string mf = (dir / kRecordingManifestName).string();
-  std::ifstream in(dir / kRecordingManifestName);
-  if (!in) return Error{mf + ": missing manifest (not a recording directory?)"};
-  json root;
-  try {
-    root = json::parse(in);
-  } catch (const std::exception& e) {
-    return Error{mf + ": invalid JSON: " + e.what()};
+  if (!std::ifstream(dir / kRecordingManifestName)) {
+    return Error{mf + ": missing manifest (not a recording directory?)"};
   }
+  Result<json> manifest = ReadJsonFile<json>(dir / kRecordingManifestName, kRecordingJsonLimits);
+  if (!manifest) return Error{manifest.error()};
+  const json root = std::move(manifest.value());
   if (!root.is_object()) return Error{mf + ": the manifest must be a JSON object"};
   ManifestReader r(root, mf);
   const json* format = r.Get(root, "format", "format", json::value_t::string);
@@ -376,6 +393,9 @@ Result<std::unique_ptr<RecordingWriter>> RecordingWriter::Open(const std::filesy
   if (!(layout.sample_rate_hz > 0) || !std::isfinite(layout.sample_rate_hz)) {
     return Error{"recording layout: sample_rate_hz must be finite and > 0"};
   }
+  if (std::string why = LayoutUtf8Problem(layout); !why.empty()) {
+    return Error{"recording layout: " + why};
+  }
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) return Error{dir.string() + ": cannot create directory: " + ec.message()};
@@ -420,7 +440,15 @@ Status RecordingWriter::Close() {
   samples_.write(header.data(), static_cast<std::streamsize>(header.size()));
   samples_.close();
   if (!samples_) return Error{path.string() + ": write error while finishing the header"};
-  return WriteManifest(dir_, ManifestOf(layout_, blocks_));
+  Status st = WriteManifest(dir_, ManifestOf(layout_, blocks_));
+  if (!st) {
+    // Without its manifest the samples are no recording: leave nothing half-written behind.
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+    std::filesystem::remove(dir_ / (std::string(kRecordingManifestName) + ".tmp"), ec);
+    return Error{st.error() + " (recording removed)"};
+  }
+  return st;
 }
 
 }  // namespace gearpath

@@ -85,7 +85,9 @@ Status WriteRecording(const Recording& recording, const std::filesystem::path& d
 // Streams blocks into a recording directory.
 class RecordingWriter {
  public:
-  // Creates `dir` (it must not already hold a recording manifest) and samples.npy.
+  // Creates `dir` (it must not already hold a recording manifest) and samples.npy. The
+  // layout's strings (machine id, sensors, units) must be UTF-8, since the manifest is JSON:
+  // checked before any file is written.
   static Result<std::unique_ptr<RecordingWriter>> Open(const std::filesystem::path& dir,
                                                        const RecordingLayout& layout);
   ~RecordingWriter();
@@ -94,7 +96,8 @@ class RecordingWriter {
 
   // Appends one block; it must match the layout (error names the field that differs).
   Status Append(const AccelBlockView& block);
-  // Finishes samples.npy and writes the manifest. Idempotent.
+  // Finishes samples.npy and writes the manifest. Idempotent. If the manifest cannot be
+  // written, samples.npy is removed too (no half-written recording is left).
   Status Close();
 
   const RecordingLayout& layout() const { return layout_; }

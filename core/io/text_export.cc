@@ -7,6 +7,9 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <tuple>
+
+#include "core/io/json_read.h"
 
 namespace gearpath {
 namespace {
@@ -317,6 +320,20 @@ Result<TextExport> ParseTextExport(std::string_view contents, const std::string&
   if (IsNumericRow(names, dc)) {
     return Error{name + ": line " + std::to_string(names_line + 1) +
                  ": the header row is numeric; a names row is required"};
+  }
+  // Names and units become channel names and units in recordings and JSON reports, which
+  // must be UTF-8: a Latin-1 or GBK export is refused here, naming the cell, rather than
+  // failing later with a JSON exception (or being silently mangled).
+  for (std::size_t c = 0; c < ncols; ++c) {
+    for (const auto& [row, text, what] :
+         {std::tuple{names_line, &names[c], "channel name"},
+          std::tuple{header[0], &units[c], "unit"}}) {
+      if (auto why = Utf8Problem(*text)) {
+        return Error{name + ": line " + std::to_string(row + 1) + ", column " +
+                     std::to_string(c + 1) + ": the " + what + " is not valid UTF-8 (" + *why +
+                     "); save the export as UTF-8, e.g. with iconv -f latin1 -t utf-8"};
+      }
+    }
   }
   for (std::size_t c = 0; c < ncols; ++c) {
     std::string unit;

@@ -23,6 +23,7 @@
 
 #include "core/frf/frf_set.h"
 #include "core/io/frf_set_io.h"
+#include "core/io/json_read.h"
 #include "core/io/recording.h"
 #include "core/io/text_export.h"
 #include "core/io/uff58.h"
@@ -284,11 +285,14 @@ int RunInspect(const InspectOptions& opt) {
   if (fs::is_directory(path)) {
     std::string format;
     if (fs::exists(path / "manifest.json")) {
-      try {
-        std::ifstream in(path / "manifest.json");
-        format = json::parse(in).value("format", "");
-      } catch (const std::exception& e) {
-        return fail((path / "manifest.json").string() + ": invalid JSON: " + e.what());
+      // Bounded parse (core/io/json_read.h): deep nesting or 1e999 is an error, not a crash.
+      // A recording's manifest lists every block, hence the recording-sized limit.
+      Result<json> manifest =
+          ReadJsonFile<json>(path / "manifest.json", {kMaxJsonDepth, std::size_t{1} << 30});
+      if (!manifest) return fail(manifest.error());
+      if (manifest->is_object()) {
+        const auto it = manifest->find("format");
+        if (it != manifest->end() && it->is_string()) format = it->get<std::string>();
       }
     }
     if (format == kFrfSetFormatName) {
@@ -339,7 +343,15 @@ int RunInspect(const InspectOptions& opt) {
                         {"sample_rate_from", l.sample_rate_from}};
   }
   if (opt.json_output) {
-    std::printf("%s\n", report.dump(2).c_str());
+    Result<std::string> text = DumpJson(report, 2, "gearpath inspect");
+    if (!text) {
+      // Readers refuse non-UTF-8 names; should one slip through, show it rather than abort,
+      // and say what was done.
+      std::fprintf(stderr, "gearpath inspect: note: %s; invalid bytes shown as U+FFFD\n",
+                   text.error().c_str());
+      text = report.dump(2, ' ', false, json::error_handler_t::replace);
+    }
+    std::printf("%s\n", text->c_str());
   } else {
     PrintJsonAsText(report, 0);
   }

@@ -247,7 +247,37 @@ TEST_F(FrfSetIoTest, RejectsDirectoryWithoutManifest) {
 TEST_F(FrfSetIoTest, RejectsInvalidJson) {
   WriteValid();
   std::ofstream(manifest()) << "{\"format\": ";
-  EXPECT_TRUE(Contains(ReadError(), "manifest.json: invalid JSON"));
+  EXPECT_TRUE(Contains(ReadError(), "manifest.json: not valid JSON"));
+}
+
+TEST_F(FrfSetIoTest, RejectsANumberThatOverflowsADoubleNamingTheLine) {
+  WriteValid();
+  std::string text = ReadFileBytes(manifest());
+  const auto at = text.find("\"format_version\": 1");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 19, "\"format_version\": 1e999");
+  WriteFileBytes(manifest(), text);
+  const std::string e = ReadError();
+  EXPECT_TRUE(Contains(e, manifest().string() + ": not valid JSON: line 3, column"));
+  EXPECT_TRUE(Contains(e, "number overflow parsing '1e999' (too large for a double)"));
+}
+
+TEST_F(FrfSetIoTest, RejectsAHundredThousandNestedLevelsWithoutOverflowingTheStack) {
+  WriteValid();
+  WriteFileBytes(manifest(), "{\"format\": \"gearpath-frf-set\", \"description\": " +
+                                 std::string(100'000, '[') + std::string(100'000, ']') + "}");
+  const std::string e = ReadError();
+  EXPECT_TRUE(Contains(e, manifest().string() + ": not valid JSON: line 1, column 110: nested "
+                                                "deeper than 64 levels"));
+}
+
+TEST_F(FrfSetIoTest, RefusesToWriteANameThatIsNotUtf8) {
+  FrfSet set = MakeSet(true, false);
+  set.description = "bad \xFF byte";
+  const Status st = WriteFrfSet(set, dir_);
+  ASSERT_FALSE(st.ok());
+  EXPECT_TRUE(Contains(st.error(), "invalid UTF-8 byte at index 4: 0xFF"));
+  EXPECT_FALSE(fs::exists(manifest()));  // no manifest, so no half set that loads
 }
 
 TEST_F(FrfSetIoTest, RejectsMissingArrayFileNamingItAndTheKey) {

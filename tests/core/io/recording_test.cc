@@ -137,6 +137,38 @@ TEST_F(RecordingTest, RefusesToOverwriteAnExistingRecording) {
   EXPECT_TRUE(Contains(st.error(), "already holds a recording"));
 }
 
+TEST_F(RecordingTest, RefusesANonUtf8ChannelNameBeforeWritingAnyFile) {
+  Recording r = Sample();
+  r.layout.channels[1].sensor = "A\xE9";  // Latin-1 "Aé"
+  Status st = WriteRecording(r, dir_);
+  ASSERT_FALSE(st.ok());
+  EXPECT_EQ(st.error(),
+            "recording layout: channels[1].sensor is not UTF-8: incomplete UTF-8 string; last "
+            "byte: 0xE9");
+  EXPECT_FALSE(fs::exists(dir_));  // nothing half-written
+}
+
+TEST_F(RecordingTest, RejectsAManifestWithAnOverflowingNumberOrDeepNesting) {
+  ASSERT_TRUE(WriteRecording(Sample(), dir_).ok());
+  std::string text = ReadFileBytes(dir_ / "manifest.json");
+  const auto at = text.find("\"sample_rate_hz\":");
+  ASSERT_NE(at, std::string::npos);
+  WriteFileBytes(dir_ / "manifest.json",
+                 text.substr(0, at) + "\"sample_rate_hz\": 1e999, \"x\":" + text.substr(at + 17));
+  Result<Recording> r = ReadRecording(dir_);
+  ASSERT_FALSE(r.ok());
+  EXPECT_TRUE(Contains(r.error(), "manifest.json: not valid JSON: line "));
+  EXPECT_TRUE(Contains(r.error(), "number overflow parsing '1e999'"));
+  EXPECT_FALSE(IsRecordingDirectory(dir_));
+
+  WriteFileBytes(dir_ / "manifest.json", "{\"format\": \"gearpath-recording\", \"x\": " +
+                                             std::string(100'000, '[') + "}");
+  r = ReadRecording(dir_);
+  ASSERT_FALSE(r.ok());
+  EXPECT_TRUE(Contains(r.error(), "nested deeper than 64 levels"));
+  EXPECT_FALSE(IsRecordingDirectory(dir_));
+}
+
 TEST_F(RecordingTest, RejectsADirectoryWithoutManifest) {
   fs::create_directories(dir_);
   Result<Recording> r = ReadRecording(dir_);

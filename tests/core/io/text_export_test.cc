@@ -39,6 +39,44 @@ TEST(TextExport, ReadsDecimalCommaWithSemicolonsAndAUnitsRow) {
   EXPECT_EQ(e.acquisition.channel(2)[0], static_cast<float>(-1.5 * 9.80665));
 }
 
+TEST(TextExport, RejectsANonUtf8ChannelNameNamingLineAndColumn) {
+  // "Gehäuse" saved as Latin-1: the channel name would break every JSON report and recording.
+  const std::string text =
+      "Sample rate: 2560 Hz\n"
+      "A1-X;Geh\xE4use-Z\n"
+      "0,1;0,2\n"
+      "0,3;0,4\n";
+  Result<TextExport> r = ParseTextExport(text, "export.txt");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error(),
+            "export.txt: line 2, column 2: the channel name is not valid UTF-8 (invalid UTF-8 "
+            "byte at index 4: 0x75); save the export as UTF-8, e.g. with iconv -f latin1 -t "
+            "utf-8");
+}
+
+TEST(TextExport, RejectsANonUtf8UnitNamingLineAndColumn) {
+  const std::string text =
+      "Sample rate: 2560 Hz\n"
+      "A1-X;A1-Y\n"
+      "m/s^2;\xB5m/s^2\n"
+      "0,1;0,2\n"
+      "0,3;0,4\n";
+  Result<TextExport> r = ParseTextExport(text, "export.txt");
+  ASSERT_FALSE(r.ok());
+  EXPECT_TRUE(Contains(r.error(), "export.txt: line 3, column 2: the unit is not valid UTF-8"));
+}
+
+TEST(TextExport, AcceptsUtf8ChannelNames) {
+  const std::string text =
+      "Sample rate: 2560 Hz\n"
+      "A1-X;Geh\xC3\xA4use-Z\n"
+      "0,1;0,2\n"
+      "0,3;0,4\n";
+  Result<TextExport> r = ParseTextExport(text, "export.txt");
+  ASSERT_TRUE(r.ok()) << r.error();
+  EXPECT_EQ(r->acquisition.channels[1].sensor, "Geh\xC3\xA4use");
+}
+
 TEST(TextExport, ReadsCommaSeparatedWithATimeColumnAndUnitsInTheNames) {
   const std::string text =
       "Time [s],A1-X [m/s^2],A3_z [m/s^2]\r\n"
