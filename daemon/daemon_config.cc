@@ -203,6 +203,8 @@ Result<DaemonConfig> ParseDaemonConfig(std::string_view text, std::string_view o
   config.log_level = c["daemon"]["log_level"];
   config.status_period_s = c["daemon"]["status_period_s"];
   config.throughput_log_period_s = c["daemon"]["throughput_log_period_s"];
+  config.state_directory = c["state"]["directory"];
+  config.state_save_period_s = c["state"]["save_period_s"];
   config.domain_id = c["dds"]["domain_id"];
   const json& t = c["dds"]["topics"];
   config.topics = {t["accel_block"],         t["dominant_path"], t["suspected_gear"],

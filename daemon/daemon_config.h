@@ -40,6 +40,8 @@ struct DaemonConfig {
   std::string log_level;
   double status_period_s = 1.0;
   double throughput_log_period_s = 60.0;
+  std::string state_directory;  // as configured; empty = $STATE_DIRECTORY or none
+  double state_save_period_s = 30.0;
   int domain_id = 0;
   TopicNames topics;
   std::vector<MachineConfig> machines;

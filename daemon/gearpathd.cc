@@ -15,6 +15,7 @@
 #include "daemon/dds_bridge.h"
 #include "idl/dds/accel_block_wire.h"
 #include "daemon/machine_runtime.h"
+#include "daemon/machine_state_store.h"
 #include "daemon/systemd_notify.h"
 #include "idl/dds/gearpath_topics.h"
 
@@ -53,9 +54,18 @@ bool ApplyLogLevel(const std::string& level) {
   return true;
 }
 
+// What the processing thread knows about a machine's saved state.
+struct SaveMark {
+  FaultState last_state = FaultState::kLearning;  // verdict state of the last accepted block
+  bool dirty = false;                             // changed since the last save
+  Clock::time_point dirty_since{};
+  bool failing = false;                           // the last save failed (said once)
+};
+
 struct Gearpathd::Impl {
-  Impl(Generation first, DaemonOptions opts)
+  Impl(Generation first, DaemonOptions opts, std::optional<MachineStateStore> state_store)
       : options(std::move(opts)),
+        store(std::move(state_store)),
         lifecycle_config(first.config),
         domain(first.config.domain_id),
         participant(domain),
@@ -94,8 +104,13 @@ struct Gearpathd::Impl {
   void Housekeeping(bool force_status);
   void PublishStatus(gearpath_DaemonState state);
   void LogThroughput();
+  void Resume(MachineRuntime& machine, MachineSet& previous);
+  void MarkChanged(const MachineRuntime& machine, FaultState verdict_state);
+  void SaveMachine(const MachineRuntime& machine);
+  void SaveDueMachines(bool all);
 
   DaemonOptions options;
+  std::optional<MachineStateStore> store;  // none: nothing is kept across restarts
   DaemonConfig lifecycle_config;  // the configuration in force, as the lifecycle thread knows it
   const Clock::time_point started = Clock::now();
 
@@ -133,6 +148,9 @@ struct Gearpathd::Impl {
   Clock::duration watchdog_period{};  // half of systemd's WatchdogSec; zero: no watchdog
   std::map<std::string, MachineCounters, std::less<>> counters;
   std::map<std::string, MachineCounters, std::less<>> counters_at_last_summary;
+  std::map<std::string, SaveMark, std::less<>> save_marks;
+  Clock::duration save_period{};
+  std::uint64_t state_save_failures = 0;
   std::uint64_t foreign_blocks = 0;
   std::uint64_t foreign_blocks_at_last_summary = 0;
   std::set<std::string, std::less<>> foreign_ids;
@@ -151,18 +169,58 @@ struct Gearpathd::Impl {
   dds::Owned<gearpath_Status> status_sample;
 };
 
+// A machine of a new generation takes over what its predecessor learned (reload) or what was
+// saved (start-up, or a machine added by a reload); else it learns.
+void Gearpathd::Impl::Resume(MachineRuntime& m, MachineSet& previous) {
+  if (auto old = previous.machines.find(m.id); old != previous.machines.end()) {
+    Status st = m.processor.ImportLearnedState(old->second->processor.ExportLearnedState());
+    if (!st) {
+      spdlog::warn("{}: the reloaded configuration changes what the baseline measures ({}); "
+                   "learning a new baseline",
+                   m.id, st.error());
+      save_marks[m.id] = SaveMark{FaultState::kLearning, true, Clock::now(), false};
+    }
+    return;  // counters and save marks carry over as they are
+  }
+  counters[m.id] = MachineCounters{};
+  save_marks[m.id] = SaveMark{};
+  if (!store) return;
+  auto saved = store->Load(m.id);
+  if (!saved) {
+    spdlog::warn("{}: saved state not used ({}); learning a new baseline", m.id, saved.error());
+    return;
+  }
+  if (!saved.value()) {
+    spdlog::info("{}: no saved state in {}; learning the healthy baseline", m.id,
+                 store->directory());
+    return;
+  }
+  SavedMachine& s = **saved;
+  counters[m.id] = std::move(s.counters);
+  const double age_s = static_cast<double>(RealtimeNs() - s.saved_at_ns) * 1e-9;
+  if (Status st = m.processor.ImportLearnedState(s.learned); !st) {
+    spdlog::warn("{}: saved state not used ({}); learning a new baseline (counters kept)", m.id,
+                 st.error());
+    return;
+  }
+  save_marks[m.id].last_state = s.learned.alarm.state;
+  spdlog::info("{}: resumed from {} (saved {:.0f} s ago): baseline {} of {} blocks, verdict "
+               "state {}",
+               m.id, store->PathOf(m.id), age_s, m.processor.baseline_blocks_learned(),
+               m.processor.baseline_blocks_needed(), ToString(s.learned.alarm.state));
+}
+
 void Gearpathd::Impl::Adopt(Generation generation) {
   const DaemonConfig& c = generation.config;
+  MachineSet previous = std::move(machines);
   machines = std::move(generation.machines);
   machine_ids.clear();
   for (const auto& m : c.machines) machine_ids.push_back(m.id);
-  // Counters survive a reload for machines still configured.
-  std::map<std::string, MachineCounters, std::less<>> kept;
-  for (const auto& id : machine_ids) {
-    auto it = counters.find(id);
-    kept[id] = it == counters.end() ? MachineCounters{} : std::move(it->second);
-  }
-  counters = std::move(kept);
+  for (auto& [id, m] : machines.machines) Resume(*m, previous);
+  // Counters and save marks of machines no longer configured go.
+  std::erase_if(counters, [&](const auto& e) { return !machines.machines.contains(e.first); });
+  std::erase_if(save_marks, [&](const auto& e) { return !machines.machines.contains(e.first); });
+  save_period = Seconds(c.state_save_period_s);
   daemon_id = c.daemon_id;
   status_period = Seconds(c.status_period_s);
   throughput_period = Seconds(c.throughput_log_period_s);
@@ -248,9 +306,53 @@ void Gearpathd::Impl::Housekeeping(bool force_status) {
     LogThroughput();
     next_throughput = now + throughput_period;
   }
+  SaveDueMachines(false);
   if (watchdog_period.count() > 0 && now >= next_watchdog) {
     NotifySystemd("WATCHDOG=1");
     next_watchdog = now + watchdog_period / 2;
+  }
+}
+
+void Gearpathd::Impl::MarkChanged(const MachineRuntime& m, FaultState verdict_state) {
+  SaveMark& mark = save_marks[m.id];
+  if (verdict_state != mark.last_state) {
+    // A verdict state that changes (learned, raised, cleared) is saved at once: a restart
+    // must resume exactly that judgement.
+    mark.last_state = verdict_state;
+    SaveMachine(m);
+    return;
+  }
+  if (!mark.dirty) {
+    mark.dirty = true;
+    mark.dirty_since = Clock::now();
+  }
+}
+
+void Gearpathd::Impl::SaveMachine(const MachineRuntime& m) {
+  SaveMark& mark = save_marks[m.id];
+  mark.dirty = false;
+  if (!store) return;
+  SavedMachine saved;
+  saved.machine_id = m.id;
+  saved.saved_at_ns = RealtimeNs();
+  saved.learned = m.processor.ExportLearnedState();
+  saved.counters = counters[m.id];
+  if (Status st = store->Save(saved); !st) {
+    ++state_save_failures;
+    if (!mark.failing) spdlog::error("{}: state not saved: {} (said once until it works)", m.id,
+                                     st.error());
+    mark.failing = true;
+    return;
+  }
+  if (mark.failing) spdlog::info("{}: state saved again", m.id);
+  mark.failing = false;
+}
+
+void Gearpathd::Impl::SaveDueMachines(bool all) {
+  const auto now = Clock::now();
+  for (auto& [id, m] : machines.machines) {
+    const SaveMark& mark = save_marks[id];
+    if (mark.dirty && (all || now - mark.dirty_since >= save_period)) SaveMachine(*m);
   }
 }
 
@@ -284,12 +386,14 @@ void Gearpathd::Impl::HandleBlock(const gearpath_AccelBlock& sample,
     if (r == c.rejected_by_reason.end()) r = c.rejected_by_reason.emplace(reason, 0).first;
     ++r->second;
     c.last_rejection = fmt::format("{}: {}", reason, outcome.message.view());
+    MarkChanged(m, save_marks[m.id].last_state);  // counters changed
     spdlog::warn("{}: block {} rejected ({}): {}", m.id, view.sequence, reason,
                  outcome.message.view());
     return;
   }
   const BlockResult& r = m.result;
   ++c.processed;
+  MarkChanged(m, r.verdict.state);
   const std::uint64_t explained = std::min(r.sequence_gap, c.rejected_in_gap);
   c.rejected_in_gap = 0;
   if (r.sequence_gap > explained) {
@@ -372,6 +476,7 @@ void Gearpathd::Impl::Loop() {
     DrainBlocks();
     Housekeeping(false);
   }
+  SaveDueMachines(true);
   PublishStatus(gearpath_STOPPING);  // the last word: subscribers see a clean stop
 }
 
@@ -390,6 +495,8 @@ void Gearpathd::Impl::Reload() {
     failure = config.error();
   } else if (config->normalized["dds"] != lifecycle_config.normalized["dds"]) {
     failure = "dds: the domain and topic names cannot change on reload (restart the daemon)";
+  } else if (ResolveStateDirectory(*config) != ResolveStateDirectory(lifecycle_config)) {
+    failure = "state.directory cannot change on reload (restart the daemon)";
   } else {
     auto machines_built = BuildMachines(*config);
     if (!machines_built) {
@@ -454,9 +561,19 @@ Gearpathd::~Gearpathd() = default;
 
 Result<std::unique_ptr<Gearpathd>> Gearpathd::Create(DaemonConfig config, MachineSet machines,
                                                      DaemonOptions options) {
+  std::optional<MachineStateStore> store;
+  if (const std::string dir = ResolveStateDirectory(config); dir.empty()) {
+    spdlog::warn("no state directory (state.directory, $STATE_DIRECTORY): learned baselines "
+                 "and counters will be forgotten when gearpathd stops");
+  } else {
+    auto opened = MachineStateStore::Open(dir);
+    if (!opened) return Error{opened.error()};
+    store.emplace(std::move(opened.value()));
+    spdlog::info("machine state kept in {}", dir);
+  }
   try {
     auto impl = std::make_unique<Impl>(Generation{std::move(config), std::move(machines)},
-                                       std::move(options));
+                                       std::move(options), std::move(store));
     return std::unique_ptr<Gearpathd>(new Gearpathd(std::move(impl)));
   } catch (const std::exception& e) {
     return Error{fmt::format("DDS set-up failed: {}", e.what())};

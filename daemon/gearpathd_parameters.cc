@@ -109,6 +109,22 @@ ParamSpec DaemonSection() {
               1.0, 86400.0, 60.0)});
 }
 
+ParamSpec StateSection() {
+  return Object(
+      "state",
+      "What each machine has learned (healthy baseline, alarm state) and its counters, kept "
+      "across restarts and reloads (docs/state.md).",
+      {String("directory",
+              "Directory of the per-machine state files; written only by this daemon. Empty: "
+              "`$STATE_DIRECTORY` when systemd sets it (`StateDirectory=`), else nothing is "
+              "kept and a restart relearns every baseline (a warning says so).",
+              "", 0, 4096),
+       Number("save_period_s",
+              "A machine's state is saved when its verdict state changes, when its baseline "
+              "is learned, at stop, and at most this many seconds after any other change.",
+              1.0, 86400.0, 30.0)});
+}
+
 ParamSpec DdsSection() {
   return Object(
       "dds", "DDS domain and topic names (docs/topics.md).",
@@ -336,7 +352,7 @@ ParamSpec MachineSpec() {
 const ParamSpec& DaemonConfigSchema() {
   static const ParamSpec schema = Object(
       "", "gearpathd configuration",
-      {DaemonSection(), DdsSection(),
+      {DaemonSection(), StateSection(), DdsSection(),
        Array("machines", "The gearboxes this daemon watches; blocks of other machines are ignored.",
              MachineSpec(), 1, kMaxMachines)});
   return schema;

@@ -1,0 +1,157 @@
+// gearpathd remembers what each machine learned across a crash, a clean restart and a reload
+// (daemon/machine_state_store.h). The truth is the fault the simulator was given: a daemon
+// that relearned its baseline after the restart would take the present fracture for healthy
+// and answer learning, then no_fault.
+#include "core/model/gear_train.h"
+#include "core/model/lumped_gearbox_model.h"
+#include "core/simulation/gearbox_simulator.h"
+#include "tests/integration/gearpathd_fixture.h"
+
+namespace gearpath::testing {
+namespace {
+
+constexpr int kBaselineBlocks = 6;
+
+class GearpathdState : public GearpathdOverDds {
+ protected:
+  void Configure(json& config) override {
+    config["machines"][0]["analysis"]["baseline"]["learning_blocks"] = kBaselineBlocks;
+    config["state"]["directory"] = (dir_ / "state").string();
+  }
+
+  GearboxSimulator Simulator(FaultType type, const std::string& gear, std::uint64_t seed) {
+    auto model = LumpedGearboxModel::Create(Table1Parameters());
+    EXPECT_TRUE(model.ok()) << model.error();
+    SimulatorConfig c;
+    c.machine_id = machine_id_;
+    c.fault.type = type;
+    c.fault.gear = gear;
+    c.sample_rate_hz = kSampleRate;
+    c.block_length = kBlockLength;
+    c.noise_relative = 0.05;
+    c.seed = seed;
+    c.include_housing_channel = false;  // p1..p3: the rows of builtin:table1
+    auto sim = GearboxSimulator::Create(model.value(), GearTrain::Table1(), c);
+    EXPECT_TRUE(sim.ok()) << sim.error();
+    return std::move(sim.value());
+  }
+
+  // Publishes one block and returns the daemon's verdict on it.
+  std::optional<dds::Owned<gearpath_SuspectedGear>> Judge(GearboxSimulator& sim) {
+    AccelBlock block;
+    sim.NextBlock(block);
+    block.sequence = sequence_++;
+    Publish(block);
+    const std::uint64_t s = block.sequence;
+    return WaitResult<gearpath_SuspectedGear>(
+        *gear_reader_, [s](const auto& r) { return r.block_sequence == s; }, 60s);
+  }
+
+  // Stops the daemon with `signal`, waits until our block writer has lost it (a killed peer
+  // goes when its lease expires), then starts a new one on the same configuration.
+  void Restart(int signal) {
+    daemon_->Signal(signal);
+    ASSERT_TRUE(daemon_->WaitExit(30s)) << "gearpathd did not exit on signal " << signal;
+    const auto deadline = std::chrono::steady_clock::now() + 60s;
+    for (;;) {
+      const Result<std::uint32_t> matched = block_writer_->MatchedReaders();
+      ASSERT_TRUE(matched.ok()) << matched.error();
+      if (*matched == 0) break;
+      ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the dead reader stayed matched";
+      std::this_thread::sleep_for(50ms);
+    }
+    DrainResults();
+    ++generation_;
+    daemon_ = std::make_unique<ChildProcess>(
+        GEARPATHD_PATH, std::vector<std::string>{"--config", config_path_},
+        (dir_ / ("gearpathd." + std::to_string(generation_) + ".log")).string());
+    ASSERT_TRUE(daemon_->started());
+    ASSERT_TRUE(WaitStatus([](const gearpath_MachineStatus&) { return true; }, 90s))
+        << daemon_->Log();
+    ASSERT_TRUE(block_writer_->WaitForReaders(1, 30s).ok()) << daemon_->Log();
+  }
+
+  void DrainResults() {
+    std::vector<dds::Owned<gearpath_SuspectedGear>> g(32);
+    std::vector<dds::Owned<gearpath_Status>> s(32);
+    std::vector<dds::SampleInfo> infos(32);
+    for (auto n = gear_reader_->Take(g, infos); n.ok() && *n > 0; n = gear_reader_->Take(g, infos)) {
+    }
+    for (auto n = status_reader_->Take(s, infos); n.ok() && *n > 0;
+         n = status_reader_->Take(s, infos)) {
+    }
+  }
+
+  void LearnHealthy() {
+    GearboxSimulator healthy = Simulator(FaultType::kNone, "", 7);
+    for (int i = 0; i < kBaselineBlocks; ++i) {
+      auto v = Judge(healthy);
+      ASSERT_TRUE(v.has_value()) << "no verdict on healthy block " << i;
+      ASSERT_EQ((*v)->state, gearpath_LEARNING);
+    }
+  }
+
+  std::uint64_t sequence_ = 1;
+  int generation_ = 0;
+};
+
+TEST_F(GearpathdState, AfterAKillWithAFractureThePresentAlarmIsResumedNotRelearned) {
+  LearnHealthy();
+  GearboxSimulator broken = Simulator(FaultType::kToothFracture, "G1", 21);
+  bool alarmed = false;
+  for (int i = 0; i < 8 && !alarmed; ++i) {
+    auto v = Judge(broken);
+    ASSERT_TRUE(v.has_value()) << "no verdict on faulty block " << i;
+    alarmed = (*v)->state == gearpath_ALARM;
+  }
+  ASSERT_TRUE(alarmed) << "the fracture never raised an alarm before the restart";
+
+  Restart(SIGKILL);
+  // The very first verdict of the new daemon, on the still-fractured gearbox.
+  auto first = Judge(broken);
+  ASSERT_TRUE(first.has_value()) << daemon_->Log();
+  EXPECT_EQ((*first)->state, gearpath_ALARM) << (*first)->reason << "\n" << daemon_->Log();
+  EXPECT_EQ(dds::GetString((*first)->gear_name), "G1");
+  EXPECT_NE(daemon_->Log().find("resumed from"), std::string::npos) << daemon_->Log();
+}
+
+TEST_F(GearpathdState, ACleanRestartKeepsTheBaselineAndTheCounters) {
+  LearnHealthy();
+  const std::uint64_t processed = sequence_ - 1;
+  Restart(SIGTERM);
+  ASSERT_TRUE(WaitStatus([&](const auto& m) { return m.blocks_processed == processed; }, 30s))
+      << "counters after restart: processed " << last_status_.blocks_processed;
+  GearboxSimulator healthy = Simulator(FaultType::kNone, "", 99);
+  auto v = Judge(healthy);
+  ASSERT_TRUE(v.has_value());
+  EXPECT_NE((*v)->state, gearpath_LEARNING) << (*v)->reason;
+  EXPECT_NE((*v)->state, gearpath_ALARM) << (*v)->reason;
+}
+
+TEST_F(GearpathdState, AReloadKeepsTheBaselineUnlessItChangesWhatItMeasures) {
+  LearnHealthy();
+  GearboxSimulator healthy = Simulator(FaultType::kNone, "", 99);
+  // Unchanged configuration: SIGHUP keeps the learned baseline.
+  daemon_->Signal(SIGHUP);
+  ASSERT_TRUE(WaitStatus([](const auto&) { return true; }, 30s));
+  auto kept = Judge(healthy);
+  ASSERT_TRUE(kept.has_value());
+  EXPECT_NE((*kept)->state, gearpath_LEARNING) << (*kept)->reason;
+
+  // A scale floor that changes every indicator's healthy scale: a new baseline is learned.
+  config_["machines"][0]["analysis"]["baseline"]["scale_floor"] = 0.2;
+  WriteConfig(config_);
+  daemon_->Signal(SIGHUP);
+  const auto deadline = std::chrono::steady_clock::now() + 60s;
+  for (;;) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << daemon_->Log();
+    auto v = Judge(healthy);
+    ASSERT_TRUE(v.has_value());
+    if ((*v)->state == gearpath_LEARNING) break;  // the reload has taken effect
+  }
+  EXPECT_NE(daemon_->Log().find("changes what the baseline measures"), std::string::npos)
+      << daemon_->Log();
+}
+
+}  // namespace
+}  // namespace gearpath::testing
