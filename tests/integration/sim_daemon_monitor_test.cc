@@ -6,9 +6,9 @@
 // 28/40 - 34/34 at 600 r/min), never a number computed by the daemon.
 //
 // Isolation: a private domain id and the per-process Cyclone discovery tag of
-// tests/tools/tool_process.h, given to all three children in CYCLONEDDS_URI (gearpathd and
-// gearpath apply it after their built-in loopback configuration, so everything stays on
-// 127.0.0.1 with multicast off). Every wait has a deadline; ctest's TIMEOUT is the watchdog of
+// tests/tools/tool_process.h, given to all three children in CYCLONEDDS_URI together with the
+// built-in loopback configuration (the variable replaces the built-in configuration), so
+// everything stays on 127.0.0.1 with multicast off. Every wait has a deadline; ctest's TIMEOUT is the watchdog of
 // each case (one ctest test per case).
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -37,7 +37,7 @@ namespace {
 
 using namespace std::chrono_literals;
 using nlohmann::json;
-using tools::testing::DiscoveryTagFragment;
+using tools::testing::TestDomainConfig;
 using tools::testing::ToolProcess;
 
 constexpr int kHealthyBlocks = 20;  // = the daemon's baseline learning blocks
@@ -84,15 +84,15 @@ ShaftOfGear ShaftOf(const std::string& gear) {
   return {"intermediate", kIntermediateHz};  // G2 and G3
 }
 
-// gearpathd as a child with the test's discovery tag in CYCLONEDDS_URI (ChildProcess clears
-// the variable; /usr/bin/env puts the tag back and execs the daemon in place, so the pid is the
+// gearpathd as a child with the test's loopback configuration and discovery tag in
+// CYCLONEDDS_URI (ChildProcess clears the variable; /usr/bin/env puts it back and execs the daemon in place, so the pid is the
 // daemon's). Stopped with SIGTERM on every exit path, SIGKILL if it does not stop in time.
 class DaemonGuard {
  public:
   DaemonGuard(const std::string& config_path, const std::string& log_path)
       : child_(
             "/usr/bin/env",
-            {"CYCLONEDDS_URI=" + DiscoveryTagFragment(), GEARPATHD_PATH, "--config", config_path},
+            {"CYCLONEDDS_URI=" + TestDomainConfig(), GEARPATHD_PATH, "--config", config_path},
             log_path) {}
   ~DaemonGuard() { (void)Stop(); }
   DaemonGuard(const DaemonGuard&) = delete;

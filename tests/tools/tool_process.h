@@ -1,8 +1,9 @@
 // Test helper: runs the built `gearpath` binary as a child process with a deadline, its stdout
-// and stderr captured in files, and a per-test-process Cyclone discovery tag in CYCLONEDDS_URI
-// (applied by gearpath::dds::Domain after the built-in loopback configuration) so concurrently
-// running tests never see each other's blocks. The tag changes nothing but discovery matching:
-// everything stays on 127.0.0.1 with multicast off.
+// and stderr captured in files, and CYCLONEDDS_URI set to the built-in loopback configuration
+// plus a per-test-process Cyclone discovery tag (CYCLONEDDS_URI replaces the built-in
+// configuration, so it carries all of it) so concurrently running tests never see each other's
+// blocks. The tag changes nothing but discovery matching: everything stays on 127.0.0.1 with
+// multicast off.
 #pragma once
 
 #include <fcntl.h>
@@ -50,7 +51,7 @@ class ToolProcess {
       : out_(log_dir / (name + ".out")), err_(log_dir / (name + ".err")) {
     std::vector<std::string> argv_storage{GEARPATH_TOOL_PATH};
     argv_storage.insert(argv_storage.end(), args.begin(), args.end());
-    const std::string uri = DiscoveryTagFragment();
+    const std::string uri = TestDomainConfig();
     pid_ = fork();
     if (pid_ == 0) {
       const int o = open(out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
