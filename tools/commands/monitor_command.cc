@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "idl/dds/domain.h"
+#include "tools/common/dds_options.h"
 #include "idl/dds/gearpath_topics.h"
 #include "idl/dds/sequence.h"
 #include "idl/dds/topic.h"
@@ -40,6 +41,7 @@ struct MonitorOptions {
   int count = 0;           // stop after this many verdicts; 0 = never
   double timeout_s = 0.0;  // stop after this long; 0 = never
   bool status = true;      // also show the Status topic
+  DdsOptions dds;
 };
 
 const char* StateName(gearpath_FaultState s) {
@@ -352,8 +354,8 @@ int RunMonitor(const MonitorOptions& opt) {
   const std::set<std::string> wanted(opt.machines.begin(), opt.machines.end());
   const bool terminal = !opt.json_lines && isatty(STDOUT_FILENO);
 
-  dds::Domain domain(opt.domain_id);
-  dds::Participant participant(domain);
+  dds::Domain domain(opt.domain_id, ToolDomainConfig(opt.dds));
+  dds::Participant participant(domain, ToolSecurityFiles(opt.dds));
   dds::WaitSet waitset(participant);
   Subscription<gearpath_DominantPath> dominant(participant, waitset, 1);
   Subscription<gearpath_SuspectedGear> gear(participant, waitset, 2);
@@ -445,7 +447,7 @@ void AddMonitorCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "monitor", "Show the daemon's fault topics (dominant path, suspected gear, envelope "
                  "and condition indicators with the block score) and its status, live; "
-                 "loopback DDS unless CYCLONEDDS_URI says otherwise");
+                 "loopback DDS unless --dds-config or CYCLONEDDS_URI says otherwise");
   cmd->add_option("--domain", opt->domain_id, "DDS domain id")->capture_default_str()
       ->check(CLI::Range(0, 232));
   cmd->add_option("--machine", opt->machines, "Only these machine ids (repeatable)");
@@ -457,6 +459,7 @@ void AddMonitorCommand(CLI::App& app, int& exit_code) {
                   "Stop after this many seconds; with --count, exit 1 if it was not reached")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("!--no-status", opt->status, "Do not show the Status topic");
+  AddDdsOptions(cmd, &opt->dds);
   cmd->callback([opt, &exit_code] {
     try {
       exit_code = RunMonitor(*opt);

@@ -27,6 +27,7 @@
 #include "idl/dds/topic.h"
 #include "idl/dds/waitset.h"
 #include "tools/commands/commands.h"
+#include "tools/common/dds_options.h"
 #include "tools/common/replay_input.h"
 
 namespace gearpath::tools {
@@ -41,6 +42,7 @@ struct RecordOptions {
   std::size_t count = 0;    // stop after this many blocks (all machines together); 0 = never
   double duration_s = 0.0;  // stop after this long; 0 = never
   bool quiet = false;
+  DdsOptions dds;
 };
 
 std::atomic<bool> g_stop{false};
@@ -62,8 +64,8 @@ int RunRecord(const RecordOptions& opt) {
     return kExitBadInput;
   }
 
-  dds::Domain domain(opt.domain_id);
-  dds::Participant participant(domain);
+  dds::Domain domain(opt.domain_id, ToolDomainConfig(opt.dds));
+  dds::Participant participant(domain, ToolSecurityFiles(opt.dds));
   dds::Topic<gearpath_AccelBlock> topic(participant);
   dds::Reader<gearpath_AccelBlock> reader(topic);
   dds::ReadCondition condition(reader);
@@ -208,6 +210,7 @@ void AddRecordCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--domain", opt->domain_id, "DDS domain id")
       ->capture_default_str()
       ->check(CLI::Range(0, 232));
+  AddDdsOptions(cmd, &opt->dds);
   cmd->add_flag("--quiet,-q", opt->quiet, "No summary on stderr");
   cmd->callback([opt, &exit_code] {
     try {

@@ -33,6 +33,7 @@ struct ReplayOptions {
   std::string format = "auto";
   ReplayInputOptions in;
   int domain_id = 0;
+  DdsOptions dds;
   double speed = 1.0;
   bool fast = false;
   bool loop = false;
@@ -104,6 +105,7 @@ int RunReplay(ReplayOptions opt) {
 
   PublisherOptions po;
   po.domain_id = opt.domain_id;
+  po.dds = opt.dds;
   po.speedup = opt.fast ? 0.0 : opt.speed;
   po.min_subscribers = opt.subscribers;
   po.match_timeout = std::chrono::milliseconds(static_cast<long long>(opt.wait_s * 1000));
@@ -216,6 +218,7 @@ void AddReplayCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--domain", opt->domain_id, "DDS domain id")
       ->capture_default_str()
       ->check(CLI::Range(0, 232));
+  AddDdsOptions(cmd, &opt->dds);
   cmd->add_option("--subscribers", opt->subscribers,
                   "Wait for this many subscribers before the first block")
       ->capture_default_str()

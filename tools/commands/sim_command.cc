@@ -44,6 +44,7 @@ struct SimOptions {
   std::string machine_id = "table1";     // the daemon's embedded default machine
   bool publish = false;
   int domain_id = 0;
+  DdsOptions dds;
   double speedup = 1.0;                  // 1 = real time; --fast sets 0 (as fast as taken)
   bool fast = false;
   std::string frf_set_dir;
@@ -139,6 +140,7 @@ int RunSim(const SimOptions& o) {
   if (o.publish) {
     PublisherOptions po;
     po.domain_id = o.domain_id;
+    po.dds = o.dds;
     po.speedup = o.fast ? 0.0 : o.speedup;
     try {
       publisher.emplace(po);
@@ -252,6 +254,7 @@ void AddSimCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--domain", opt->domain_id, "DDS domain id, with --publish")
       ->capture_default_str()
       ->check(CLI::Range(0, 232));
+  AddDdsOptions(cmd, &opt->dds);
   cmd->add_option("--speed", opt->speedup, "with --publish: pace at N x real time")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

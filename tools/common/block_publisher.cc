@@ -12,8 +12,8 @@ namespace gearpath::tools {
 struct BlockPublisher::Impl {
   explicit Impl(const PublisherOptions& o)
       : options(o),
-        domain(o.domain_id),
-        participant(domain),
+        domain(o.domain_id, ToolDomainConfig(o.dds)),
+        participant(domain, ToolSecurityFiles(o.dds)),
         topic(participant, o.topic.empty()
                                ? std::string(dds::TopicTraits<gearpath_AccelBlock>::kName)
                                : o.topic),

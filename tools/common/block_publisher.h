@@ -12,11 +12,13 @@
 
 #include "core/common/accel_block.h"
 #include "core/common/result.h"
+#include "tools/common/dds_options.h"
 
 namespace gearpath::tools {
 
 struct PublisherOptions {
   int domain_id = 0;
+  DdsOptions dds;           // --dds-config, --dds-security
   std::string topic;        // empty = the default AccelBlock topic name
   double speedup = 1.0;     // 1 = real time, N = N times faster, 0 = as fast as possible
   int min_subscribers = 1;  // wait for this many matched readers before the first block
