@@ -195,6 +195,16 @@ Result<DaemonConfig> ParseDaemonConfig(std::string_view text, std::string_view o
     }
     CheckMachine(machines[i], at, errors);
   }
+  const json& security = c["dds"]["security"];  // all six files or none
+  bool secured = false;
+  for (const auto& file : security) secured = secured || !file.get<std::string>().empty();
+  for (const auto& [key, file] : security.items()) {
+    if (secured && file.get<std::string>().empty()) {
+      errors.push_back(fmt::format("dds.security.{}: required when any dds.security file is "
+                                   "given (DDS Security needs all six)",
+                                   key));
+    }
+  }
   if (!errors.empty()) return Error{JoinLines(errors)};
 
   DaemonConfig config;
@@ -209,6 +219,10 @@ Result<DaemonConfig> ParseDaemonConfig(std::string_view text, std::string_view o
   const json& t = c["dds"]["topics"];
   config.topics = {t["accel_block"],         t["dominant_path"], t["suspected_gear"],
                    t["envelope_indicators"], t["condition_indicators"], t["status"]};
+  config.dds_config_file = c["dds"]["config"];
+  config.dds_security = {security["identity_ca"],    security["identity_certificate"],
+                         security["identity_private_key"], security["permissions_ca"],
+                         security["governance"],     security["permissions"]};
   for (std::size_t i = 0; i < machines.size(); ++i) {
     config.machines.push_back({fmt::format("machines[{}]", i), machines[i]["id"],
                                machines[i]["frf_set"], machines[i]});

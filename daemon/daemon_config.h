@@ -27,6 +27,17 @@ struct TopicNames {
   bool operator==(const TopicNames&) const = default;
 };
 
+// dds.security: the six DDS Security files (idl/dds/security.h); all empty = no DDS Security.
+struct DdsSecurityFiles {
+  std::string identity_ca;
+  std::string identity_certificate;
+  std::string identity_private_key;
+  std::string permissions_ca;
+  std::string governance;
+  std::string permissions;
+  bool operator==(const DdsSecurityFiles&) const = default;
+};
+
 struct MachineConfig {
   std::string key_path;   // "machines[2]", for messages
   std::string id;
@@ -44,6 +55,8 @@ struct DaemonConfig {
   double state_save_period_s = 30.0;
   int domain_id = 0;
   TopicNames topics;
+  std::string dds_config_file;    // dds.config: empty = CYCLONEDDS_URI, else loopback
+  DdsSecurityFiles dds_security;  // dds.security
   std::vector<MachineConfig> machines;
   nlohmann::json normalized;  // the whole config with defaults filled in
 };

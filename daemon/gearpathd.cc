@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "daemon/dds_bridge.h"
+#include "daemon/dds_setup.h"
 #include "idl/dds/accel_block_wire.h"
 #include "daemon/machine_runtime.h"
 #include "daemon/machine_state_store.h"
@@ -67,8 +68,8 @@ struct Gearpathd::Impl {
       : options(std::move(opts)),
         store(std::move(state_store)),
         lifecycle_config(first.config),
-        domain(first.config.domain_id),
-        participant(domain),
+        domain(first.config.domain_id, DaemonDomainConfig(first.config)),
+        participant(domain, DaemonSecurityFiles(first.config)),
         block_topic(participant, first.config.topics.accel_block),
         dominant_topic(participant, first.config.topics.dominant_path),
         gear_topic(participant, first.config.topics.suspected_gear),

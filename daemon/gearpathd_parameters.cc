@@ -127,8 +127,28 @@ ParamSpec StateSection() {
 
 ParamSpec DdsSection() {
   return Object(
-      "dds", "DDS domain and topic names (docs/topics.md).",
+      "dds", "DDS domain, network configuration, security and topic names (docs/topics.md).",
       {Integer("domain_id", "DDS domain id.", 0, 232, 0),
+       String("config",
+              "Cyclone DDS XML configuration file of a deployment (docs/deployment.md); it "
+              "alone decides interfaces, peers and ports, replacing the embedded loopback "
+              "configuration and `CYCLONEDDS_URI`. Empty: `CYCLONEDDS_URI` if set, else the "
+              "embedded loopback configuration (127.0.0.1, multicast off).",
+              "", 0, 4096),
+       Object("security",
+              "DDS Security (docs/deployment.md): all six files, or none (no security). "
+              "tools/make-security-fixtures.sh makes a test set.",
+              {String("identity_ca", "PEM certificate of the CA that signs identities.", "", 0,
+                      4096),
+               String("identity_certificate", "PEM certificate of this daemon.", "", 0, 4096),
+               String("identity_private_key", "PEM private key of this daemon (unencrypted).",
+                      "", 0, 4096),
+               String("permissions_ca",
+                      "PEM certificate of the CA that signs governance and permissions.", "", 0,
+                      4096),
+               String("governance", "Signed governance document (S/MIME, .p7s).", "", 0, 4096),
+               String("permissions", "Signed permissions of this daemon (S/MIME, .p7s).", "", 0,
+                      4096)}),
        Object("topics", "Topic names; every daemon and client on a domain must agree on them.",
               {String("accel_block", "Input: blocks of housing accelerations.",
                       "gearpath/AccelBlock", 1, 256),
@@ -334,7 +354,14 @@ ParamSpec MachineSpec() {
                        16, 65536, 1024),
                Integer("max_samples_per_channel",
                        "Longest accepted block, samples per channel (IDL bound 65536).", 16,
-                       65536, 65536)}),
+                       65536, 65536),
+               Array("prepare_samples_per_channel",
+                     "Block lengths configured at start-up and on reload, before READY (FFT "
+                     "plans, the FRF set on the block's bin grid, the per-bin inverse "
+                     "operators), in parallel across machines. A length not listed is "
+                     "configured by its first block, which then waits for it.",
+                     Integer("samples", "Samples per channel.", 16, 65536, nullptr), 0, 4,
+                     json::array())}),
        Array("channels",
              "The block's channels in order, each mapped to an FRF row. Empty: the FRF set's "
              "response channels, in their order.",
