@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
 #include "daemon/dds_bridge.h"
 #include "daemon/machine_setup_builder.h"
 
@@ -33,6 +37,54 @@ std::string Summary(const MachineSetup& s) {
       s.options.identification.iterations, s.options.nominal_speed_hz);
 }
 
+// Configures every machine for its listed block lengths, machines in parallel (one worker per
+// core): the per-bin operators of a reference FRF set take seconds, and a daemon that did this
+// on its first block would keep every machine waiting behind it.
+Status PrepareMachines(const DaemonConfig& config, MachineSet& set) {
+  struct Job {
+    const MachineConfig* config;
+    MachineRuntime* machine;
+    std::uint32_t samples;
+    std::string error;
+  };
+  std::vector<Job> jobs;
+  for (const MachineConfig& mc : config.machines) {
+    const auto& lengths = mc.settings["acquisition"]["prepare_samples_per_channel"];
+    for (const auto& n : lengths) {
+      jobs.push_back({&mc, set.machines.at(mc.id).get(), n.get<std::uint32_t>(), {}});
+    }
+  }
+  // Shapes of one machine share its processor: one worker per machine, lengths in turn.
+  std::vector<std::vector<Job*>> per_machine;
+  for (Job& job : jobs) {
+    if (per_machine.empty() || per_machine.back().front()->machine != job.machine) {
+      per_machine.emplace_back();
+    }
+    per_machine.back().push_back(&job);
+  }
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t i = next++; i < per_machine.size(); i = next++) {
+      for (Job* job : per_machine[i]) {
+        if (Status st = job->machine->processor.Prepare(job->samples); !st) job->error = st.error();
+      }
+    }
+  };
+  const std::size_t workers =
+      std::min<std::size_t>(per_machine.size(), std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::thread> threads;
+  for (std::size_t w = 1; w < workers; ++w) threads.emplace_back(work);
+  work();
+  for (auto& t : threads) t.join();
+  for (const Job& job : jobs) {
+    if (!job.error.empty()) {
+      return Error{fmt::format("{}.acquisition.prepare_samples_per_channel ({}): {}",
+                               job.config->key_path, job.samples, job.error)};
+    }
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 Result<MachineSet> BuildMachines(const DaemonConfig& config) {
@@ -51,6 +103,7 @@ Result<MachineSet> BuildMachines(const DaemonConfig& config) {
     runtime->indicator_names = IndicatorNamesOf(runtime->processor);
     set.machines.emplace(machine.id, std::move(runtime));
   }
+  if (Status st = PrepareMachines(config, set); !st) return Error{st.error()};
   return set;
 }
 

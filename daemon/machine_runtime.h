@@ -1,9 +1,10 @@
 // MachineRuntime: one configured machine, ready to process blocks; and its counters.
 //
 // BuildMachines turns a validated DaemonConfig into one BlockProcessor per machine (FRF set
-// loaded, everything that depends only on the FRFs precomputed; the first block of a new
-// length configures that length), all or nothing: a reload that fails for one machine changes
-// none. MachineCounters live apart from the processors so that they survive a reload (Status
+// loaded, everything that depends only on the FRFs precomputed, and every block length of
+// acquisition.prepare_samples_per_channel configured, machines in parallel; any other length
+// is configured by its first block), all or nothing: a reload that fails for one machine
+// changes none. It runs before READY=1 and, on reload, on the lifecycle thread before the swap. MachineCounters live apart from the processors so that they survive a reload (Status
 // keeps counting across SIGHUP).
 #pragma once
 
@@ -35,7 +36,8 @@ struct MachineSet {
   std::map<std::string, std::unique_ptr<MachineRuntime>, std::less<>> machines;
 };
 
-// Loads every FRF set, builds and prepares every processor. Errors name the machine's key.
+// Loads every FRF set, builds and prepares every processor (in parallel). Errors name the
+// machine's key.
 Result<MachineSet> BuildMachines(const DaemonConfig& config);
 
 struct MachineCounters {

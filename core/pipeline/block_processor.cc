@@ -137,8 +137,8 @@ struct BlockProcessor::Impl {
   Shape* last_shape = nullptr;                 // shape of the last accepted block
   std::uint64_t use_counter = 0;
 
-  Shape* FindShape(std::size_t n) noexcept {
-    for (auto& s : shapes) {
+  Shape* FindShape(std::size_t n) const noexcept {
+    for (const auto& s : shapes) {
       if (s->work.n == n) return s.get();
     }
     return nullptr;
@@ -210,6 +210,10 @@ Status BlockProcessor::Prepare(std::uint32_t samples_per_channel) {
     return Error{fmt::format("machine '{}': configuring for {} samples failed: {}", e.machine_id,
                              samples_per_channel, ex.what())};
   }
+}
+
+bool BlockProcessor::configured_for(std::uint32_t samples_per_channel) const noexcept {
+  return impl_->FindShape(samples_per_channel) != nullptr;
 }
 
 ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult& out) noexcept {

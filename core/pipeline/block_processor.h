@@ -271,6 +271,8 @@ class BlockProcessor {
 
   // Configures for blocks of `samples_per_channel` samples ahead of the first such block.
   Status Prepare(std::uint32_t samples_per_channel);
+  // True when blocks of this length are configured (Prepare() or an earlier block).
+  bool configured_for(std::uint32_t samples_per_channel) const noexcept;
 
   // Validates and analyses one block. On acceptance `out` is filled; pass the same
   // BlockResult every time (its vectors are sized once and reused, so nothing is allocated
