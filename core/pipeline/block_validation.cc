@@ -48,6 +48,12 @@ std::string_view ToString(RejectReason reason) noexcept {
       return "out_of_order_sequence";
     case RejectReason::kNotConfigured:
       return "not_configured";
+    case RejectReason::kImplausibleSpeed:
+      return "implausible_speed";
+    case RejectReason::kFlatChannel:
+      return "flat_channel";
+    case RejectReason::kNoSignalInBand:
+      return "no_signal_in_band";
   }
   return "unknown";
 }
@@ -98,6 +104,26 @@ RejectReason ValidateBlock(const AccelBlockView& block, const BlockExpectations&
                    expected.sample_rate_tolerance * 100.0);
     return RejectReason::kWrongSampleRate;
   }
+  // A speed is trusted by every later stage (shaft rates, orders, envelope harmonics): a
+  // non-finite one, or one far outside what the machine can do (1e300 Hz, rpm sent as Hz), is
+  // a broken tachometer or publisher, not a reading. 0 stays "unknown".
+  const double speed = block.speed_hz;
+  if (speed != 0.0) {
+    if (!std::isfinite(speed) || speed < 0.0) {
+      message.Format("speed %g Hz of block %llu is not a shaft speed (finite and > 0 Hz, or 0 "
+                     "when unknown)",
+                     speed, static_cast<unsigned long long>(block.sequence));
+      return RejectReason::kImplausibleSpeed;
+    }
+    if ((expected.min_speed_hz > 0.0 && speed < expected.min_speed_hz) ||
+        (expected.max_speed_hz > 0.0 && speed > expected.max_speed_hz)) {
+      message.Format("speed %g Hz of block %llu is outside the plausible range of machine "
+                     "'%.*s' (%g..%g Hz)",
+                     speed, static_cast<unsigned long long>(block.sequence), Len(machine),
+                     machine.data(), expected.min_speed_hz, expected.max_speed_hz);
+      return RejectReason::kImplausibleSpeed;
+    }
+  }
   const std::size_t n = block.samples_per_channel;
   if (block.samples.size() != block.channels.size() * n) {
     message.Format("block carries %zu samples but %zu channels x %zu samples per channel = %zu",
@@ -127,6 +153,48 @@ RejectReason ValidateBlock(const AccelBlockView& block, const BlockExpectations&
       return RejectReason::kNonFinite;
     }
   }
+  // A channel holding one value throughout (all zero: an unpowered sensor or bridge; a
+  // constant: a stuck or saturated input) carries no vibration. Processed, it would be fitted
+  // as real silence (an all-zero block gave a dominant path with no name); rejected, it shows
+  // on the status topic. A live channel differs from its first sample within a few samples.
+  std::size_t flat = 0;
+  std::size_t first_flat = 0;
+  for (std::size_t c = 0; c < block.channels.size(); ++c) {
+    const float* x = block.samples.data() + c * n;
+    std::size_t i = 1;
+    while (i < n && x[i] == x[0]) ++i;
+    if (i == n) {
+      if (flat == 0) first_flat = c;
+      ++flat;
+    }
+  }
+  if (flat == block.channels.size() && block.samples[0] == 0.0f) {
+    bool all_zero = true;
+    for (std::size_t c = 0; c < block.channels.size(); ++c) {
+      all_zero = all_zero && block.samples[c * n] == 0.0f;
+    }
+    if (all_zero) {
+      message.Format("every sample of all %zu channels is zero: sensors or bridge dead?",
+                     block.channels.size());
+      return RejectReason::kFlatChannel;
+    }
+  }
+  if (flat > 0) {
+    const float value = block.samples[first_flat * n];
+    const ChannelInfo& ch = block.channels[first_flat];
+    if (value == 0.0f) {
+      message.Format("every sample of channel %zu (%s/%s) is zero: sensor or bridge dead?%s",
+                     first_flat, ch.sensor.c_str(), AxisName(ch.axis),
+                     flat > 1 ? " (and other channels are flat too)" : "");
+    } else {
+      message.Format("every sample of channel %zu (%s/%s) is %g: a flat signal, sensor stuck "
+                     "or saturated?%s",
+                     first_flat, ch.sensor.c_str(), AxisName(ch.axis),
+                     static_cast<double>(value),
+                     flat > 1 ? " (and other channels are flat too)" : "");
+    }
+    return RejectReason::kFlatChannel;
+  }
   return RejectReason::kNone;
 }
 
@@ -153,7 +221,18 @@ SequenceTracker::Verdict SequenceTracker::Observe(std::uint64_t sequence,
     return verdict;
   }
   if (sequence > last_) {
-    accept(sequence - last_ - 1);
+    const std::uint64_t gap = sequence - last_ - 1;
+    if (gap > max_gap_) {  // a renumbering or a corrupt number, not 2^64 lost blocks
+      accept(0);
+      verdict.restarted = true;
+      return verdict;
+    }
+    accept(gap);
+    return verdict;
+  }
+  if (last_ - sequence > reorder_window_) {  // too far back for a late block: a restart
+    accept(0);
+    verdict.restarted = true;
     return verdict;
   }
   // Backward: a late block, or a publisher that restarted its numbering.

@@ -6,9 +6,10 @@
 // the daemon counts rejections by reason and reports them on its status topic.
 //
 // Order of the checks (the first failure wins, cheapest and most fundamental first):
-//   machine id, oversize cap, empty, channel count, channel layout, sample rate, length,
-//   finiteness. Sequence numbers are judged separately by SequenceTracker, only for blocks
-//   that passed everything else, so a rejected block never advances the tracker.
+//   machine id, oversize cap, empty, channel count, channel layout, sample rate, speed,
+//   length, finiteness, flat channel. Sequence numbers are judged separately by
+//   SequenceTracker, only for blocks that passed everything else, so a rejected block never
+//   advances the tracker.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +35,9 @@ enum class RejectReason : std::uint8_t {
   kDuplicateSequence,   // same sequence number as the last accepted block
   kOutOfOrderSequence,  // sequence number below the last accepted block
   kNotConfigured,       // processor could not configure for this block shape (see message)
+  kImplausibleSpeed,    // speed_hz not finite, negative, or outside the machine's plausible range
+  kFlatChannel,         // every sample of a channel is the same value (zero: sensor/bridge dead)
+  kNoSignalInBand,      // no transfer path carries energy in the analysis band (path energy)
 };
 
 // Stable snake_case name, e.g. "wrong_sample_rate" (used as the status topic's counter key).
@@ -53,6 +57,11 @@ struct BlockExpectations {
   std::uint32_t min_samples_per_channel = 256;
   std::uint32_t max_samples_per_channel = 1u << 20;
   std::size_t max_total_samples = std::size_t{1} << 26;  // hard cap, any layout
+  // Plausible input-shaft speed of a block that carries one; 0 = no bound on that side.
+  // speed_hz = 0 means "unknown" (the pipeline takes the nominal speed or estimates it) and
+  // is always accepted; NaN, infinity and negative speeds never are.
+  double min_speed_hz = 0.0;
+  double max_speed_hz = 0.0;
 };
 
 // Fills `message` and returns the reason (kNone and an empty message when the block is valid).
@@ -65,21 +74,38 @@ RejectReason ValidateBlock(const AccelBlockView& block, const BlockExpectations&
 // Policy (documented in docs/diagnosis.md):
 //  - first block: accepted whatever its number;
 //  - seq == last accepted: rejected kDuplicateSequence;
-//  - seq <  last accepted: rejected kOutOfOrderSequence, UNLESS it is the `resync_after`-th
-//    block of a contiguous run of such backward blocks (a publisher restart): then accepted
-//    and `restarted` is set, so a restarted acquisition is not locked out forever;
-//  - seq >  last + 1: ACCEPTED, and the number of missing blocks is reported in `gap`
-//    (a lost block does not make the next one wrong; the loss is counted, not hidden).
+//  - last - reorder_window <= seq < last: rejected kOutOfOrderSequence, UNLESS it is the
+//    `resync_after`-th block of a contiguous run of such backward blocks (a publisher
+//    restart): then accepted and `restarted` is set;
+//  - seq < last - reorder_window: accepted at once as a publisher restart (`restarted`, no
+//    gap): a block that far behind is no late block, and waiting would drop good blocks;
+//  - last + 1 < seq <= last + 1 + max_gap: ACCEPTED, and the number of missing blocks is
+//    reported in `gap` (a lost block does not make the next one wrong; the loss is counted,
+//    not hidden);
+//  - seq > last + 1 + max_gap: accepted as a restart (`restarted`, no gap): a jump of more
+//    than max_gap blocks is a renumbering or a corrupt number (2^64 - 1), not a loss, and
+//    must not add ~2^64 to the lost counter.
+// Plain unsigned arithmetic, no wrap-around: a uint64 counter at 10^6 blocks/s wraps after
+// 584 000 years, so 2^64 - 1 followed by 0 is a restart (far backward), not a gap of 0.
 class SequenceTracker {
  public:
+  // Largest forward jump counted as lost blocks (2^24: 194 days at one block per second).
+  static constexpr std::uint64_t kDefaultMaxGap = std::uint64_t{1} << 24;
+  // Deepest backward jump still treated as a late block rather than a restart.
+  static constexpr std::uint64_t kDefaultReorderWindow = 1024;
+
   struct Verdict {
     RejectReason reason = RejectReason::kNone;  // kNone, kDuplicateSequence, kOutOfOrderSequence
     std::uint64_t gap = 0;                      // blocks missing before this one (accepted only)
     bool restarted = false;                     // accepted as a publisher restart
   };
 
-  explicit SequenceTracker(std::uint32_t resync_after = 3) noexcept
-      : resync_after_(resync_after == 0 ? 1 : resync_after) {}
+  explicit SequenceTracker(std::uint32_t resync_after = 3,
+                           std::uint64_t max_gap = kDefaultMaxGap,
+                           std::uint64_t reorder_window = kDefaultReorderWindow) noexcept
+      : resync_after_(resync_after == 0 ? 1 : resync_after),
+        max_gap_(max_gap),
+        reorder_window_(reorder_window) {}
 
   // Judges `sequence` and, when accepted, makes it the last accepted one. Fills `message`
   // for rejections (names the machine, the received and the last accepted number).
@@ -93,6 +119,8 @@ class SequenceTracker {
 
  private:
   std::uint32_t resync_after_;
+  std::uint64_t max_gap_;
+  std::uint64_t reorder_window_;
   bool has_last_ = false;
   std::uint64_t last_ = 0;
   std::uint64_t total_gap_ = 0;

@@ -56,9 +56,17 @@ RejectReason DominantPathStage::Process(StageContext& ctx) noexcept {
       }
     }
   }
-  const int dominant = SelectDominantPath(w.path_criterion);
-  w.dominant = dominant;
+  int dominant = SelectDominantPath(w.path_criterion);
   BlockResult& out = ctx.out;
+  if (dominant < 0) {
+    // The criterion is zero on every path (sideband energy without a known speed): fall back
+    // to band energy, and say so in the result, rather than publish a dominant path with no
+    // name. The path-energy stage has rejected blocks with no energy in the band at all.
+    std::copy(w.path_energy.begin(), w.path_energy.end(), w.path_criterion.begin());
+    dominant = SelectDominantPath(w.path_criterion);
+    out.criterion = AnalysisOptions::DominantCriterion::kBandEnergy;
+  }
+  w.dominant = dominant;
   out.dominant_path = dominant;
   out.dominant_path_name =
       dominant >= 0 ? std::string_view(m.setup.frf_set.paths[static_cast<std::size_t>(dominant)].name)

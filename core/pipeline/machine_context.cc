@@ -313,6 +313,13 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
   impl->expect.max_samples_per_channel = o.max_samples_per_channel;
   impl->expect.max_total_samples =
       static_cast<std::size_t>(o.max_samples_per_channel) * impl->channels;
+  // Plausible speed of a block: a factor 2 around the speed range the analysis is set up for
+  // (the search range, +/-20 % around nominal by default; the envelope band is sized for its
+  // top). Wider than any drift of a fixed-speed machine, narrower than the usual publisher
+  // errors (rpm sent as Hz: x60; rad/s: x6.3) and than garbage such as 1e300.
+  constexpr double kSpeedPlausibleFactor = 2.0;
+  impl->expect.min_speed_hz = lo / kSpeedPlausibleFactor;
+  impl->expect.max_speed_hz = kSpeedPlausibleFactor * impl->max_speed_hz;
 
   const double keep_lo = impl->setup.options.speed_search_lo_hz;
   const double keep_hi = impl->setup.options.speed_search_hi_hz;

@@ -53,6 +53,15 @@ RejectReason PathEnergyStage::Process(StageContext& ctx) noexcept {
     w.best_channel[p] = o.indicator_channel >= 0 ? o.indicator_channel : best;
   }
   EnergyShares(w.path_energy, w.path_share);
+  // Nothing in the analysis band (e.g. a channel pair carrying only DC): no path can be
+  // dominant and every later figure would be 0/0. Rejected, so no result names an empty path.
+  bool any = false;
+  for (std::size_t p = 0; p < m.paths; ++p) any = any || w.path_energy[p] > 0.0;
+  if (!any) {
+    ctx.message.Format("no transfer path carries energy in the analysis band %g..%g Hz",
+                       m.band_lo, m.band_hi);
+    return RejectReason::kNoSignalInBand;
+  }
   return RejectReason::kNone;
 }
 

@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
+#include <set>
 #include <string>
+#include <string_view>
 
 namespace gearpath {
 namespace {
@@ -24,7 +27,8 @@ class BlockValidationTest : public ::testing::Test {
     block_.sample_rate_hz = 8000.0;
     block_.channels = {{"A1", Axis::kX, "m/s^2", 0.0}, {"A1", Axis::kY, "m/s^2", 0.0}};
     block_.samples_per_channel = 32;
-    block_.samples.assign(64, 0.5f);
+    // A live-looking signal: every channel varies (a flat channel is rejected).
+    for (int i = 0; i < 64; ++i) block_.samples.push_back(0.25f * static_cast<float>(i % 7) - 0.5f);
   }
 
   RejectReason Validate() { return ValidateBlock(block_.view(), expected_, message_); }
@@ -126,10 +130,92 @@ TEST_F(BlockValidationTest, RejectsInfinity) {
   EXPECT_EQ(Message(), "sample 3 of channel 0 (A1/x) is infinite");
 }
 
+TEST_F(BlockValidationTest, AcceptsAnUnknownSpeedOfZeroAndASpeedInRange) {
+  expected_.min_speed_hz = 4.0;
+  expected_.max_speed_hz = 24.0;
+  block_.speed_hz = 0.0;
+  EXPECT_EQ(Validate(), RejectReason::kNone);
+  block_.speed_hz = -0.0;
+  EXPECT_EQ(Validate(), RejectReason::kNone);
+  for (double v : {4.0, 10.0, 24.0}) {
+    block_.speed_hz = v;
+    EXPECT_EQ(Validate(), RejectReason::kNone) << v;
+  }
+}
+
+TEST_F(BlockValidationTest, RejectsASpeedOf1e300NamingTheValueAndTheRange) {
+  expected_.min_speed_hz = 4.0;
+  expected_.max_speed_hz = 24.0;
+  block_.speed_hz = 1e300;
+  EXPECT_EQ(Validate(), RejectReason::kImplausibleSpeed);
+  EXPECT_EQ(Message(),
+            "speed 1e+300 Hz of block 7 is outside the plausible range of machine 'gb1' "
+            "(4..24 Hz)");
+  block_.speed_hz = 600.0;  // r/min sent as Hz
+  EXPECT_EQ(Validate(), RejectReason::kImplausibleSpeed);
+  block_.speed_hz = 1.0;  // below
+  EXPECT_EQ(Validate(), RejectReason::kImplausibleSpeed);
+}
+
+TEST_F(BlockValidationTest, RejectsANonFiniteOrNegativeSpeedEvenWithoutARange) {
+  for (double v : {std::numeric_limits<double>::quiet_NaN(),
+                   std::numeric_limits<double>::infinity(), -10.0}) {
+    block_.speed_hz = v;
+    EXPECT_EQ(Validate(), RejectReason::kImplausibleSpeed) << v;
+  }
+  block_.speed_hz = std::numeric_limits<double>::quiet_NaN();
+  (void)Validate();
+  EXPECT_EQ(Message(),
+            "speed nan Hz of block 7 is not a shaft speed (finite and > 0 Hz, or 0 when unknown)");
+  block_.speed_hz = 1e300;  // no range configured: only finiteness and sign are checked
+  EXPECT_EQ(Validate(), RejectReason::kNone);
+}
+
+TEST_F(BlockValidationTest, RejectsAnAllZeroBlock) {
+  block_.samples.assign(64, 0.0f);
+  EXPECT_EQ(Validate(), RejectReason::kFlatChannel);
+  EXPECT_EQ(Message(), "every sample of all 2 channels is zero: sensors or bridge dead?");
+}
+
+TEST_F(BlockValidationTest, RejectsOneDeadChannelNamingIt) {
+  std::fill(block_.samples.begin() + 32, block_.samples.end(), -0.0f);
+  block_.samples[40] = 0.0f;  // +0 and -0 are the same silence
+  EXPECT_EQ(Validate(), RejectReason::kFlatChannel);
+  EXPECT_EQ(Message(), "every sample of channel 1 (A1/y) is zero: sensor or bridge dead?");
+}
+
+TEST_F(BlockValidationTest, RejectsAStuckChannelNamingItsValue) {
+  std::fill(block_.samples.begin(), block_.samples.begin() + 32, 2.5f);
+  EXPECT_EQ(Validate(), RejectReason::kFlatChannel);
+  EXPECT_EQ(Message(),
+            "every sample of channel 0 (A1/x) is 2.5: a flat signal, sensor stuck or saturated?");
+}
+
+TEST_F(BlockValidationTest, AcceptsAChannelThatVariesInItsLastSampleOnly) {
+  std::fill(block_.samples.begin(), block_.samples.begin() + 32, 0.0f);
+  block_.samples[31] = 1e-30f;
+  EXPECT_EQ(Validate(), RejectReason::kNone);
+}
+
+TEST_F(BlockValidationTest, NonFiniteWinsOverFlat) {
+  block_.samples.assign(64, 0.0f);
+  block_.samples[40] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(Validate(), RejectReason::kNonFinite);
+}
+
 TEST(RejectReasonTest, EveryReasonHasADistinctStableName) {
   EXPECT_EQ(ToString(RejectReason::kWrongSampleRate), "wrong_sample_rate");
   EXPECT_EQ(ToString(RejectReason::kOutOfOrderSequence), "out_of_order_sequence");
+  EXPECT_EQ(ToString(RejectReason::kImplausibleSpeed), "implausible_speed");
+  EXPECT_EQ(ToString(RejectReason::kFlatChannel), "flat_channel");
+  EXPECT_EQ(ToString(RejectReason::kNoSignalInBand), "no_signal_in_band");
   EXPECT_NE(ToString(RejectReason::kBadLength), ToString(RejectReason::kEmpty));
+  std::set<std::string_view> names;
+  for (int r = 0; r <= static_cast<int>(RejectReason::kNoSignalInBand); ++r) {
+    const std::string_view name = ToString(static_cast<RejectReason>(r));
+    EXPECT_NE(name, "unknown") << r;
+    EXPECT_TRUE(names.insert(name).second) << name;
+  }
 }
 
 TEST(SequenceTrackerTest, AcceptsTheFirstBlockWhateverItsNumber) {
@@ -195,6 +281,70 @@ TEST(SequenceTrackerTest, ScatteredLateBlocksNeverResynchronise) {
     EXPECT_EQ(tracker.Observe(s, "gb1", message).reason, RejectReason::kOutOfOrderSequence);
   }
   EXPECT_EQ(tracker.last(), 100u);
+}
+
+constexpr std::uint64_t kMaxU64 = std::numeric_limits<std::uint64_t>::max();
+
+TEST(SequenceTrackerTest, SequenceTwoToTheSixtyFourMinusOneIsARestartNotTwoToTheSixtyFourLost) {
+  // Issue 10: 2^64-1 after normal blocks made the lost counter 18 446 744 073 709 551 586 and
+  // the next two good blocks were rejected.
+  SequenceTracker tracker;
+  MessageText message;
+  for (std::uint64_t s = 1; s <= 30; ++s) {
+    ASSERT_EQ(tracker.Observe(s, "gb1", message).reason, RejectReason::kNone);
+  }
+  auto v = tracker.Observe(kMaxU64, "gb1", message);
+  EXPECT_EQ(v.reason, RejectReason::kNone);
+  EXPECT_EQ(v.gap, 0u);
+  EXPECT_TRUE(v.restarted);
+  // The next good blocks are accepted at once: far below 2^64-1 is a restart, not "late".
+  v = tracker.Observe(31, "gb1", message);
+  EXPECT_EQ(v.reason, RejectReason::kNone);
+  EXPECT_EQ(v.gap, 0u);
+  EXPECT_TRUE(v.restarted);
+  v = tracker.Observe(32, "gb1", message);
+  EXPECT_EQ(v.reason, RejectReason::kNone);
+  EXPECT_EQ(v.gap, 0u);
+  EXPECT_FALSE(v.restarted);
+  EXPECT_EQ(tracker.total_gap(), 0u);
+}
+
+TEST(SequenceTrackerTest, FromTwoToTheSixtyFourMinusOneToZeroIsARestart) {
+  SequenceTracker tracker;
+  MessageText message;
+  (void)tracker.Observe(kMaxU64 - 1, "gb1", message);
+  EXPECT_EQ(tracker.Observe(kMaxU64, "gb1", message).gap, 0u);
+  const auto v = tracker.Observe(0, "gb1", message);
+  EXPECT_EQ(v.reason, RejectReason::kNone);
+  EXPECT_TRUE(v.restarted);
+  EXPECT_EQ(tracker.Observe(1, "gb1", message).gap, 0u);
+  EXPECT_EQ(tracker.total_gap(), 0u);
+}
+
+TEST(SequenceTrackerTest, CountsAGapUpToMaxGapAndTakesALongerJumpAsARestart) {
+  SequenceTracker tracker(3, /*max_gap=*/1000, /*reorder_window=*/10);
+  MessageText message;
+  (void)tracker.Observe(100, "gb1", message);
+  auto v = tracker.Observe(1101, "gb1", message);  // exactly 1000 missing
+  EXPECT_EQ(v.gap, 1000u);
+  EXPECT_FALSE(v.restarted);
+  v = tracker.Observe(2103, "gb1", message);  // 1001 missing: a renumbering
+  EXPECT_EQ(v.reason, RejectReason::kNone);
+  EXPECT_EQ(v.gap, 0u);
+  EXPECT_TRUE(v.restarted);
+  EXPECT_EQ(tracker.total_gap(), 1000u);
+}
+
+TEST(SequenceTrackerTest, AJumpFarBackIsAnImmediateRestartAndANearOneIsLate) {
+  SequenceTracker tracker(3, SequenceTracker::kDefaultMaxGap, /*reorder_window=*/10);
+  MessageText message;
+  (void)tracker.Observe(100, "gb1", message);
+  EXPECT_EQ(tracker.Observe(90, "gb1", message).reason, RejectReason::kOutOfOrderSequence);
+  const auto v = tracker.Observe(89, "gb1", message);  // 11 back: beyond the window
+  EXPECT_EQ(v.reason, RejectReason::kNone);
+  EXPECT_TRUE(v.restarted);
+  EXPECT_EQ(tracker.last(), 89u);
+  EXPECT_EQ(tracker.Observe(90, "gb1", message).gap, 0u);
 }
 
 }  // namespace
