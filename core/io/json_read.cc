@@ -173,8 +173,7 @@ template Result<nlohmann::json> ReadJsonFile<nlohmann::json>(const std::filesyst
                                                              const JsonReadLimits&);
 template Result<nlohmann::ordered_json> ReadJsonFile<nlohmann::ordered_json>(
     const std::filesystem::path&, const JsonReadLimits&);
-template Result<std::string> DumpJson<nlohmann::json>(const nlohmann::json&, int,
-                                                      std::string_view);
+template Result<std::string> DumpJson<nlohmann::json>(const nlohmann::json&, int, std::string_view);
 template Result<std::string> DumpJson<nlohmann::ordered_json>(const nlohmann::ordered_json&, int,
                                                               std::string_view);
 

@@ -110,17 +110,19 @@ RejectReason ValidateBlock(const AccelBlockView& block, const BlockExpectations&
   const double speed = block.speed_hz;
   if (speed != 0.0) {
     if (!std::isfinite(speed) || speed < 0.0) {
-      message.Format("speed %g Hz of block %llu is not a shaft speed (finite and > 0 Hz, or 0 "
-                     "when unknown)",
-                     speed, static_cast<unsigned long long>(block.sequence));
+      message.Format(
+          "speed %g Hz of block %llu is not a shaft speed (finite and > 0 Hz, or 0 "
+          "when unknown)",
+          speed, static_cast<unsigned long long>(block.sequence));
       return RejectReason::kImplausibleSpeed;
     }
     if ((expected.min_speed_hz > 0.0 && speed < expected.min_speed_hz) ||
         (expected.max_speed_hz > 0.0 && speed > expected.max_speed_hz)) {
-      message.Format("speed %g Hz of block %llu is outside the plausible range of machine "
-                     "'%.*s' (%g..%g Hz)",
-                     speed, static_cast<unsigned long long>(block.sequence), Len(machine),
-                     machine.data(), expected.min_speed_hz, expected.max_speed_hz);
+      message.Format(
+          "speed %g Hz of block %llu is outside the plausible range of machine "
+          "'%.*s' (%g..%g Hz)",
+          speed, static_cast<unsigned long long>(block.sequence), Len(machine), machine.data(),
+          expected.min_speed_hz, expected.max_speed_hz);
       return RejectReason::kImplausibleSpeed;
     }
   }
@@ -187,11 +189,11 @@ RejectReason ValidateBlock(const AccelBlockView& block, const BlockExpectations&
                      first_flat, ch.sensor.c_str(), AxisName(ch.axis),
                      flat > 1 ? " (and other channels are flat too)" : "");
     } else {
-      message.Format("every sample of channel %zu (%s/%s) is %g: a flat signal, sensor stuck "
-                     "or saturated?%s",
-                     first_flat, ch.sensor.c_str(), AxisName(ch.axis),
-                     static_cast<double>(value),
-                     flat > 1 ? " (and other channels are flat too)" : "");
+      message.Format(
+          "every sample of channel %zu (%s/%s) is %g: a flat signal, sensor stuck "
+          "or saturated?%s",
+          first_flat, ch.sensor.c_str(), AxisName(ch.axis), static_cast<double>(value),
+          flat > 1 ? " (and other channels are flat too)" : "");
     }
     return RejectReason::kFlatChannel;
   }

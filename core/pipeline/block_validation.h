@@ -100,8 +100,7 @@ class SequenceTracker {
     bool restarted = false;                     // accepted as a publisher restart
   };
 
-  explicit SequenceTracker(std::uint32_t resync_after = 3,
-                           std::uint64_t max_gap = kDefaultMaxGap,
+  explicit SequenceTracker(std::uint32_t resync_after = 3, std::uint64_t max_gap = kDefaultMaxGap,
                            std::uint64_t reorder_window = kDefaultReorderWindow) noexcept
       : resync_after_(resync_after == 0 ? 1 : resync_after),
         max_gap_(max_gap),

@@ -58,8 +58,8 @@ RejectReason PathEnergyStage::Process(StageContext& ctx) noexcept {
   bool any = false;
   for (std::size_t p = 0; p < m.paths; ++p) any = any || w.path_energy[p] > 0.0;
   if (!any) {
-    ctx.message.Format("no transfer path carries energy in the analysis band %g..%g Hz",
-                       m.band_lo, m.band_hi);
+    ctx.message.Format("no transfer path carries energy in the analysis band %g..%g Hz", m.band_lo,
+                       m.band_hi);
     return RejectReason::kNoSignalInBand;
   }
   return RejectReason::kNone;

@@ -32,7 +32,8 @@ bool StartsWith(const std::string& s, const std::string& prefix) {
 TEST(DaemonConfigHostileInput, ANumberThatOverflowsADoubleIsAnErrorNotAnAbort) {
   auto parsed = ParseDaemonConfig(DefaultWith("1e999"), "gearpathd.json");
   ASSERT_FALSE(parsed.ok());
-  EXPECT_TRUE(StartsWith(parsed.error(), "gearpathd.json: not valid JSON: line ")) << parsed.error();
+  EXPECT_TRUE(StartsWith(parsed.error(), "gearpathd.json: not valid JSON: line "))
+      << parsed.error();
   EXPECT_NE(parsed.error().find("number overflow parsing '1e999' (too large for a double)"),
             std::string::npos)
       << parsed.error();
@@ -62,7 +63,8 @@ TEST(DaemonConfigHostileInput, NonUtf8BytesAreAnErrorNamingThePosition) {
   text.replace(text.find("\"table1\""), 8, "\"t\xE9\xFF\"");
   auto parsed = ParseDaemonConfig(text, "gearpathd.json");
   ASSERT_FALSE(parsed.ok());
-  EXPECT_TRUE(StartsWith(parsed.error(), "gearpathd.json: not valid JSON: line ")) << parsed.error();
+  EXPECT_TRUE(StartsWith(parsed.error(), "gearpathd.json: not valid JSON: line "))
+      << parsed.error();
   EXPECT_NE(parsed.error().find("UTF-8"), std::string::npos) << parsed.error();
 }
 

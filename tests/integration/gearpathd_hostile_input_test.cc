@@ -97,8 +97,7 @@ TEST_F(GearpathdOverDds, ReloadWithEachCrashInputKeepsRunningTheOldConfiguration
     // Still running the old configuration: the next block is processed.
     Publish(NoiseBlock(seq++));
     const std::uint64_t processed = seq - 1;
-    ASSERT_TRUE(
-        WaitStatus([&](const auto& m) { return m.blocks_processed == processed; }, 30s))
+    ASSERT_TRUE(WaitStatus([&](const auto& m) { return m.blocks_processed == processed; }, 30s))
         << "processed " << last_status_.blocks_processed;
   }
   EXPECT_EQ(last_status_.blocks_rejected, 0u);
@@ -140,9 +139,10 @@ TEST_F(GearpathdOverDds, RejectsImplausibleSpeedAndAllZeroBlocksAndSurvivesSeque
         20s))
         << last_status_.last_rejection_reason;
   }
-  EXPECT_TRUE(daemon_->WaitForLog("rejected (implausible_speed): speed 1e+300 Hz of block 2 is "
-                                  "outside the plausible range",
-                                  5s));
+  EXPECT_TRUE(
+      daemon_->WaitForLog("rejected (implausible_speed): speed 1e+300 Hz of block 2 is "
+                          "outside the plausible range",
+                          5s));
   // 2^64-1 then normal blocks: all processed, none lost (the rejected blocks explain the gap).
   for (std::uint64_t s : {std::numeric_limits<std::uint64_t>::max(), seq, seq + 1}) {
     Publish(NoiseBlock(s));

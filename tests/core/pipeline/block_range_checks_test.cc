@@ -30,7 +30,9 @@ class BlockRangeChecksTest : public ::testing::Test {
     return block;
   }
 
-  ProcessOutcome Process(const AccelBlock& block) { return processor_->Process(block.view(), result_); }
+  ProcessOutcome Process(const AccelBlock& block) {
+    return processor_->Process(block.view(), result_);
+  }
 
   GearboxSimulator sim_ = MakeSimulator(Table1Machine(), FaultType::kNone, "", 11);
   std::optional<BlockProcessor> processor_;

@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <set>
 #include <string>
@@ -158,8 +158,8 @@ TEST_F(BlockValidationTest, RejectsASpeedOf1e300NamingTheValueAndTheRange) {
 }
 
 TEST_F(BlockValidationTest, RejectsANonFiniteOrNegativeSpeedEvenWithoutARange) {
-  for (double v : {std::numeric_limits<double>::quiet_NaN(),
-                   std::numeric_limits<double>::infinity(), -10.0}) {
+  for (double v :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), -10.0}) {
     block_.speed_hz = v;
     EXPECT_EQ(Validate(), RejectReason::kImplausibleSpeed) << v;
   }
