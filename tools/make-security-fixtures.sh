@@ -9,7 +9,8 @@
 #                                  `gearpath sim --publish`, `gearpath replay`), monitor
 #                                  (`gearpath monitor`, any results subscriber)
 #   <who>_permissions.xml / .p7s   what each may do, signed by the CA:
-#                                    gearpathd   subscribes blocks, publishes results and Status
+#                                    gearpathd   subscribes blocks and Status, publishes
+#                                                results and Status
 #                                    acquisition publishes blocks only
 #                                    monitor     subscribes results and Status only
 #   <who>.security.json            the six files of one participant, absolute paths: the
@@ -173,7 +174,8 @@ results=$(IFS=';'; echo "${t_results[*]}")
 identity gearpathd gearpathd
 identity acquisition "gearpath acquisition"
 identity monitor "gearpath monitor"
-permissions gearpathd gearpathd "$results" "$t_block"
+# gearpathd also reads Status: a hot standby watches its primary's.
+permissions gearpathd gearpathd "$results" "$t_block;gearpath/Status"
 permissions acquisition "gearpath acquisition" "$t_block" ""
 permissions monitor "gearpath monitor" "" "$results"
 rm -f ca_cert.srl

@@ -97,9 +97,16 @@ class GearpathdOverDds : public ::testing::Test {
     condition_reader_ =
         std::make_unique<dds::Reader<gearpath_ConditionIndicators>>(*condition_topic_);
 
-    daemon_ = std::make_unique<ChildProcess>(
-        GEARPATHD_PATH, std::vector<std::string>{"--config", config_path_},
-        (dir_ / "gearpathd.log").string());
+    // With daemon_environment_ set (by Configure), /usr/bin/env puts those variables into the
+    // daemon's environment (ChildProcess clears CYCLONEDDS_URI) and execs it in place.
+    std::vector<std::string> argv = daemon_environment_;
+    argv.insert(argv.end(), {GEARPATHD_PATH, "--config", config_path_});
+    daemon_ = daemon_environment_.empty()
+                  ? std::make_unique<ChildProcess>(
+                        GEARPATHD_PATH, std::vector<std::string>{"--config", config_path_},
+                        (dir_ / "gearpathd.log").string())
+                  : std::make_unique<ChildProcess>("/usr/bin/env", argv,
+                                                   (dir_ / "gearpathd.log").string());
     ASSERT_TRUE(daemon_->started());
     // Ready = its Status arrives and it has discovered our block writer.
     ASSERT_TRUE(WaitStatus([](const gearpath_MachineStatus&) { return true; }, 90s))
@@ -220,6 +227,7 @@ class GearpathdOverDds : public ::testing::Test {
   std::filesystem::path dir_;
   std::string config_path_;
   json config_;
+  std::vector<std::string> daemon_environment_;  // "NAME=value" for the daemon, if any
   std::vector<ChannelInfo> channels_;
   std::mt19937 rng_{12345};
   gearpath_MachineStatus last_status_{};
