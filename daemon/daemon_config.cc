@@ -205,6 +205,10 @@ Result<DaemonConfig> ParseDaemonConfig(std::string_view text, std::string_view o
                                    key));
     }
   }
+  if (c["standby"]["primary"] == c["daemon"]["id"]) {
+    errors.push_back("standby.primary: a daemon cannot stand by for itself (daemon.id is the "
+                     "same)");
+  }
   if (!errors.empty()) return Error{JoinLines(errors)};
 
   DaemonConfig config;
@@ -215,6 +219,9 @@ Result<DaemonConfig> ParseDaemonConfig(std::string_view text, std::string_view o
   config.throughput_log_period_s = c["daemon"]["throughput_log_period_s"];
   config.state_directory = c["state"]["directory"];
   config.state_save_period_s = c["state"]["save_period_s"];
+  config.standby_primary = c["standby"]["primary"];
+  config.takeover_after_s = c["standby"]["takeover_after_s"];
+  if (config.takeover_after_s == 0.0) config.takeover_after_s = 1.5 * config.status_period_s;
   config.domain_id = c["dds"]["domain_id"];
   const json& t = c["dds"]["topics"];
   config.topics = {t["accel_block"],         t["dominant_path"], t["suspected_gear"],

@@ -53,6 +53,8 @@ struct DaemonConfig {
   double throughput_log_period_s = 60.0;
   std::string state_directory;  // as configured; empty = $STATE_DIRECTORY or none
   double state_save_period_s = 30.0;
+  std::string standby_primary;   // standby.primary: empty = a primary, always publishes
+  double takeover_after_s = 0.0;  // standby.takeover_after_s, resolved (> 0 when standby)
   int domain_id = 0;
   TopicNames topics;
   std::string dds_config_file;    // dds.config: empty = CYCLONEDDS_URI, else loopback

@@ -77,6 +77,7 @@ struct Gearpathd::Impl {
         condition_topic(participant, first.config.topics.condition_indicators),
         status_topic(participant, first.config.topics.status),
         block_reader(block_topic),
+        status_reader(status_topic),
         dominant_writer(dominant_topic),
         gear_writer(gear_topic),
         indicators_writer(indicators_topic),
@@ -90,6 +91,8 @@ struct Gearpathd::Impl {
     Adopt(std::move(first));
     samples.resize(1);
     infos.resize(1);
+    status_samples.resize(8);
+    status_infos.resize(8);
   }
 
   // ---- lifecycle thread ----
@@ -109,6 +112,7 @@ struct Gearpathd::Impl {
   void MarkChanged(const MachineRuntime& machine, FaultState verdict_state);
   void SaveMachine(const MachineRuntime& machine);
   void SaveDueMachines(bool all);
+  void WatchPrimary();
 
   DaemonOptions options;
   std::optional<MachineStateStore> store;  // none: nothing is kept across restarts
@@ -124,6 +128,7 @@ struct Gearpathd::Impl {
   dds::Topic<gearpath_ConditionIndicators> condition_topic;
   dds::Topic<gearpath_Status> status_topic;
   dds::Reader<gearpath_AccelBlock> block_reader;
+  dds::Reader<gearpath_Status> status_reader;  // a standby watches its primary's Status
   dds::Writer<gearpath_DominantPath> dominant_writer;
   dds::Writer<gearpath_SuspectedGear> gear_writer;
   dds::Writer<gearpath_EnvelopeIndicators> indicators_writer;
@@ -152,6 +157,16 @@ struct Gearpathd::Impl {
   std::map<std::string, SaveMark, std::less<>> save_marks;
   Clock::duration save_period{};
   std::uint64_t state_save_failures = 0;
+  // Hot standby: results are published only while `publishing`; a primary always publishes.
+  std::string primary_id;
+  Clock::duration takeover_after{};
+  bool publishing = true;
+  Clock::time_point primary_last_seen{};
+  Clock::time_point next_primary_check{};
+  bool primary_seen = false;  // its Status has arrived at least once (logged once)
+  std::uint64_t results_withheld = 0;
+  std::vector<dds::Owned<gearpath_Status>> status_samples;
+  std::vector<dds::SampleInfo> status_infos;
   std::uint64_t foreign_blocks = 0;
   std::uint64_t foreign_blocks_at_last_summary = 0;
   std::set<std::string, std::less<>> foreign_ids;
@@ -222,6 +237,20 @@ void Gearpathd::Impl::Adopt(Generation generation) {
   std::erase_if(counters, [&](const auto& e) { return !machines.machines.contains(e.first); });
   std::erase_if(save_marks, [&](const auto& e) { return !machines.machines.contains(e.first); });
   save_period = Seconds(c.state_save_period_s);
+  if (c.standby_primary != primary_id) {
+    primary_id = c.standby_primary;
+    takeover_after = Seconds(c.takeover_after_s);
+    // A new standby gives its primary one takeover period to show itself before it publishes.
+    publishing = primary_id.empty();
+    primary_last_seen = Clock::now();
+    primary_seen = false;
+    if (!primary_id.empty()) {
+      spdlog::info("standby for daemon \"{}\": results are published only while its Status "
+                   "is missing for {:.2f} s",
+                   primary_id, c.takeover_after_s);
+    }
+  }
+  takeover_after = Seconds(c.takeover_after_s);
   daemon_id = c.daemon_id;
   status_period = Seconds(c.status_period_s);
   throughput_period = Seconds(c.throughput_log_period_s);
@@ -308,10 +337,41 @@ void Gearpathd::Impl::Housekeeping(bool force_status) {
     next_throughput = now + throughput_period;
   }
   SaveDueMachines(false);
+  if (!primary_id.empty() && now >= next_primary_check) WatchPrimary();
   if (watchdog_period.count() > 0 && now >= next_watchdog) {
     NotifySystemd("WATCHDOG=1");
     next_watchdog = now + watchdog_period / 2;
   }
+}
+
+void Gearpathd::Impl::WatchPrimary() {
+  if (primary_id.empty()) return;
+  const auto now = Clock::now();
+  for (;;) {
+    auto n = status_reader.Take(status_samples, status_infos);
+    if (!n || *n == 0) break;
+    for (std::size_t i = 0; i < *n; ++i) {
+      if (!status_infos[i].valid_data) continue;
+      const gearpath_Status& s = *status_samples[i];
+      if (dds::GetString(s.daemon_id) != primary_id) continue;
+      // Its arrival on our clock, not its timestamp: the hosts' clocks may disagree.
+      primary_last_seen = s.state == gearpath_STOPPING ? Clock::time_point{} : now;
+      if (!primary_seen && s.state != gearpath_STOPPING) {
+        primary_seen = true;
+        spdlog::info("primary \"{}\" seen: standing by", primary_id);
+      }
+    }
+  }
+  const bool primary_silent = now - primary_last_seen >= takeover_after;
+  if (primary_silent && !publishing) {
+    publishing = true;
+    spdlog::warn("primary \"{}\" silent for {:.2f} s: publishing results from now on",
+                 primary_id, duration<double>(now - primary_last_seen).count());
+  } else if (!primary_silent && publishing) {
+    publishing = false;
+    spdlog::info("primary \"{}\" is back: standing by (results withheld)", primary_id);
+  }
+  next_primary_check = now + takeover_after / 4;
 }
 
 void Gearpathd::Impl::MarkChanged(const MachineRuntime& m, FaultState verdict_state) {
@@ -422,13 +482,17 @@ void Gearpathd::Impl::HandleBlock(const gearpath_AccelBlock& sample,
     }
     c.indicators_omitted += omitted.sets + omitted.values + omitted.names;
   }
-  for (Status st : {dominant_writer.Write(*dominant_sample), gear_writer.Write(*gear_sample),
-                    indicators_writer.Write(*indicators_sample),
-                    condition_writer.Write(*condition_sample)}) {
-    if (!st) {
-      ++publish_failures;
-      spdlog::error("{}: result of block {} not published: {}", m.id, r.sequence, st.error());
+  if (publishing) {
+    for (Status st : {dominant_writer.Write(*dominant_sample), gear_writer.Write(*gear_sample),
+                      indicators_writer.Write(*indicators_sample),
+                      condition_writer.Write(*condition_sample)}) {
+      if (!st) {
+        ++publish_failures;
+        spdlog::error("{}: result of block {} not published: {}", m.id, r.sequence, st.error());
+      }
     }
+  } else {
+    ++results_withheld;  // standing by: the primary publishes this block's results
   }
   c.last_alpha = r.regularisation.alpha_median;
   c.last_condition = r.regularisation.condition_max;
@@ -464,6 +528,7 @@ void Gearpathd::Impl::Loop() {
   while (!stop_requested.load()) {
     auto wait = next_status - Clock::now();
     if (watchdog_period.count() > 0) wait = std::min(wait, next_watchdog - Clock::now());
+    if (!primary_id.empty()) wait = std::min(wait, next_primary_check - Clock::now());
     wait = std::max<Clock::duration>(wait, Clock::duration::zero());
     auto woke = waitset.Wait(triggered, duration_cast<nanoseconds>(wait));
     if (!woke) {

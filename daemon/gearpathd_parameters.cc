@@ -109,6 +109,23 @@ ParamSpec DaemonSection() {
               1.0, 86400.0, 60.0)});
 }
 
+ParamSpec StandbySection() {
+  return Object(
+      "standby",
+      "Hot standby (docs/deployment.md): this daemon processes every block of its machines "
+      "(so its baselines stay learned) but publishes results only while the primary daemon "
+      "is silent.",
+      {String("primary",
+              "Daemon id of the primary this daemon backs up. Empty: this daemon is a primary "
+              "and always publishes.",
+              "", 0, kMaxIdLength),
+       Number("takeover_after_s",
+              "Publish once the primary's Status has been missing this long (or at once when "
+              "it says STOPPING); stop again when its Status returns. 0: 1.5 x "
+              "daemon.status_period_s (both daemons should share the status period).",
+              0.0, 3600.0, 0.0)});
+}
+
 ParamSpec StateSection() {
   return Object(
       "state",
@@ -379,7 +396,7 @@ ParamSpec MachineSpec() {
 const ParamSpec& DaemonConfigSchema() {
   static const ParamSpec schema = Object(
       "", "gearpathd configuration",
-      {DaemonSection(), StateSection(), DdsSection(),
+      {DaemonSection(), StateSection(), StandbySection(), DdsSection(),
        Array("machines", "The gearboxes this daemon watches; blocks of other machines are ignored.",
              MachineSpec(), 1, kMaxMachines)});
   return schema;
