@@ -10,6 +10,7 @@ packages=(
   libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev libsystemd-dev
   libgtest-dev libgmock-dev libbenchmark-dev valgrind
   python3 python3-numpy
+  openssl  # tools/make-security-fixtures.sh: the DDS Security tests make their PKI at test time
 )
 
 missing=()

@@ -7,12 +7,14 @@
 #                                  controlled (signed by the CA, S/MIME)
 #   <who>_cert.pem / _key.pem      identities: gearpathd (the daemon), acquisition (bridge,
 #                                  `gearpath sim --publish`, `gearpath replay`), monitor
-#                                  (`gearpath monitor`, any results subscriber)
+#                                  (`gearpath monitor`, any results subscriber), recorder
+#                                  (`gearpath record`)
 #   <who>_permissions.xml / .p7s   what each may do, signed by the CA:
 #                                    gearpathd   subscribes blocks and Status, publishes
 #                                                results and Status
 #                                    acquisition publishes blocks only
 #                                    monitor     subscribes results and Status only
+#                                    recorder    subscribes blocks only
 #   <who>.security.json            the six files of one participant, absolute paths: the
 #                                  daemon's `dds.security` object, or `--dds-security FILE`
 #                                  of the gearpath tools
@@ -174,10 +176,12 @@ results=$(IFS=';'; echo "${t_results[*]}")
 identity gearpathd gearpathd
 identity acquisition "gearpath acquisition"
 identity monitor "gearpath monitor"
+identity recorder "gearpath recorder"
 # gearpathd also reads Status: a hot standby watches its primary's.
 permissions gearpathd gearpathd "$results" "$t_block;gearpath/Status"
 permissions acquisition "gearpath acquisition" "$t_block" ""
 permissions monitor "gearpath monitor" "" "$results"
+permissions recorder "gearpath recorder" "" "$t_block"
 rm -f ca_cert.srl
 echo "make-security-fixtures: wrote CA, governance and identities gearpathd, acquisition," \
-  "monitor to $out"
+  "monitor, recorder to $out"
