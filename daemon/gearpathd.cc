@@ -15,6 +15,7 @@
 #include "daemon/dds_bridge.h"
 #include "daemon/dds_setup.h"
 #include "idl/dds/accel_block_wire.h"
+#include "daemon/machine_id_filter.h"
 #include "daemon/machine_runtime.h"
 #include "daemon/machine_state_store.h"
 #include "daemon/systemd_notify.h"
@@ -63,6 +64,13 @@ struct SaveMark {
   bool failing = false;                           // the last save failed (said once)
 };
 
+// The block topic with the machine filter set, ready for the block reader.
+const dds::Topic<gearpath_AccelBlock>& FilteredByMachine(dds::Topic<gearpath_AccelBlock>& topic,
+                                                         MachineIdFilter& filter) {
+  topic.SetSampleFilter(&MachineIdFilter::Accept, &filter);
+  return topic;
+}
+
 struct Gearpathd::Impl {
   Impl(Generation first, DaemonOptions opts, std::optional<MachineStateStore> state_store)
       : options(std::move(opts)),
@@ -76,7 +84,7 @@ struct Gearpathd::Impl {
         indicators_topic(participant, first.config.topics.envelope_indicators),
         condition_topic(participant, first.config.topics.condition_indicators),
         status_topic(participant, first.config.topics.status),
-        block_reader(block_topic),
+        block_reader(FilteredByMachine(block_topic, machine_filter)),
         status_reader(status_topic),
         dominant_writer(dominant_topic),
         gear_writer(gear_topic),
@@ -116,6 +124,7 @@ struct Gearpathd::Impl {
 
   DaemonOptions options;
   std::optional<MachineStateStore> store;  // none: nothing is kept across restarts
+  MachineIdFilter machine_filter;  // before the block reader, which it filters
   DaemonConfig lifecycle_config;  // the configuration in force, as the lifecycle thread knows it
   const Clock::time_point started = Clock::now();
 
@@ -232,6 +241,7 @@ void Gearpathd::Impl::Adopt(Generation generation) {
   machines = std::move(generation.machines);
   machine_ids.clear();
   for (const auto& m : c.machines) machine_ids.push_back(m.id);
+  machine_filter.Admit(machine_ids);
   for (auto& [id, m] : machines.machines) Resume(*m, previous);
   // Counters and save marks of machines no longer configured go.
   std::erase_if(counters, [&](const auto& e) { return !machines.machines.contains(e.first); });
@@ -308,7 +318,10 @@ void Gearpathd::Impl::LogThroughput() {
                           c.indicators_omitted - before.indicators_omitted);
     }
   }
-  const std::uint64_t foreign = foreign_blocks - foreign_blocks_at_last_summary;
+  // Dropped by the reader's machine filter, or taken during a reload before the new machine
+  // set was adopted.
+  const std::uint64_t foreign_now = foreign_blocks + machine_filter.dropped();
+  const std::uint64_t foreign = foreign_now - foreign_blocks_at_last_summary;
   spdlog::info("throughput over {:.0f} s: {}{}", seconds, line,
                foreign > 0 ? fmt::format("; {} block(s) of other machines ignored", foreign)
                            : std::string());
@@ -321,7 +334,7 @@ void Gearpathd::Impl::LogThroughput() {
                             "rejected since start",
                             machine_ids.size(), processed, rejected));
   counters_at_last_summary = counters;
-  foreign_blocks_at_last_summary = foreign_blocks;
+  foreign_blocks_at_last_summary = foreign_now;
   last_summary = now;
 }
 

@@ -91,6 +91,19 @@ class Topic : public Entity {
   const std::string& name() const noexcept { return name_; }
   dds_entity_t participant_handle() const noexcept { return participant_; }
 
+  // Drops samples for which `accept(sample, arg)` is false before they reach any reader of
+  // this topic entity: they take no place in a reader's history or instance limits, and are
+  // acknowledged, so their writer is not held up. Cyclone calls `accept` on its receive
+  // threads. Set it before creating the readers, on a topic entity that only they use.
+  void SetSampleFilter(bool (*accept)(const void* sample, void* arg), void* arg) {
+    dds_topic_filter filter{};
+    filter.mode = DDS_TOPIC_FILTER_SAMPLE_ARG;
+    filter.f.sample_arg = accept;
+    filter.arg = arg;
+    CheckDds(dds_set_topic_filter_extended(handle(), &filter),
+             "dds_set_topic_filter_extended(\"" + name_ + "\")");
+  }
+
  private:
   Topic(const Participant& participant, std::string name, const Qos& qos)
       : Entity(CheckDds(dds_create_topic(participant.handle(), &TopicTraits<T>::Descriptor(),
