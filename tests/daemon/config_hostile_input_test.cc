@@ -58,6 +58,15 @@ TEST(DaemonConfigHostileInput, NestingWithinTheLimitReachesTheSchemaWhichNamesTh
       << parsed.error();
 }
 
+TEST(DaemonConfigHostileInput, AnIntegralFloatBeyondInt64IsARangeErrorNotAConversion) {
+  // Found by fuzz_daemon_config (UBSan: 6.55556e+56 outside the range of long).
+  json c = json::parse(DefaultConfigText());
+  c["dds"]["domain_id"] = 6.55556e56;
+  auto parsed = ParseDaemonConfig(c.dump(), "gearpathd.json");
+  ASSERT_FALSE(parsed.ok());
+  EXPECT_EQ(parsed.error(), "dds.domain_id: expected a value in [0, 232], got 6.55556e+56");
+}
+
 TEST(DaemonConfigHostileInput, NonUtf8BytesAreAnErrorNamingThePosition) {
   std::string text = DefaultWith("1.0");
   text.replace(text.find("\"table1\""), 8, "\"t\xE9\xFF\"");
