@@ -60,6 +60,7 @@ class ChildProcess {
   }
 
   bool started() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
   bool running() const { return pid_ > 0 && !exit_code_.has_value() && !signalled_; }
   void Signal(int signo) const {
     if (pid_ > 0) kill(pid_, signo);
