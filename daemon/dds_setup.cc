@@ -21,8 +21,8 @@ dds::DomainConfig DaemonDomainConfig(const DaemonConfig& config) {
     spdlog::warn("CYCLONEDDS_URI is set but ignored: dds.config names the DDS configuration");
   }
   const std::string interfaces = dds::SelectedInterfaces(config.domain_id, resolved.text);
-  spdlog::info("DDS domain {}: configuration from {}; selected interfaces: {}",
-               config.domain_id, resolved.origin, interfaces);
+  spdlog::info("DDS domain {}: configuration from {}; selected interfaces: {}", config.domain_id,
+               resolved.origin, interfaces);
   return resolved;
 }
 
@@ -31,8 +31,9 @@ dds::SecurityFiles DaemonSecurityFiles(const DaemonConfig& config) {
   const dds::SecurityFiles files{s.identity_ca,    s.identity_certificate, s.identity_private_key,
                                  s.permissions_ca, s.governance,           s.permissions};
   if (!files.enabled()) {
-    spdlog::info("DDS Security off (dds.security names no files): any participant on the "
-                 "domain may publish blocks and read or write results");
+    spdlog::info(
+        "DDS Security off (dds.security names no files): any participant on the "
+        "domain may publish blocks and read or write results");
     return files;
   }
   if (Status readable = dds::CheckSecurityFiles(files); !readable) {
@@ -49,7 +50,7 @@ dds::SecurityFiles DaemonSecurityFiles(const DaemonConfig& config) {
   spdlog::info("DDS Security on: identity {}, permissions {}, governance {} (plugins from {})",
                files.identity_certificate, files.permissions, files.governance,
                *dds::SecurityPluginDirectory() != '\0' ? dds::SecurityPluginDirectory()
-                                                        : "Cyclone's default library path");
+                                                       : "Cyclone's default library path");
   return files;
 }
 

@@ -62,10 +62,9 @@ DomainConfig ResolveDomainConfig(std::string_view config_file, EnvironmentConfig
 
 std::string SelectedInterfaces(dds_domainid_t id, const std::string& config) {
   // Config tracing on, to the capture sink; the output file only matters if a sink is reset.
-  const std::string probe =
-      config +
-      ",<CycloneDDS><Domain Id=\"any\"><Tracing><Verbosity>config</Verbosity>"
-      "<OutputFile>/dev/null</OutputFile></Tracing></Domain></CycloneDDS>";
+  const std::string probe = config +
+                            ",<CycloneDDS><Domain Id=\"any\"><Tracing><Verbosity>config</Verbosity>"
+                            "<OutputFile>/dev/null</OutputFile></Tracing></Domain></CycloneDDS>";
   std::string trace;
   std::string log;
   dds_set_trace_sink(Collect, &trace);
@@ -76,9 +75,9 @@ std::string SelectedInterfaces(dds_domainid_t id, const std::string& config) {
   dds_set_trace_sink(nullptr, nullptr);
   while (!log.empty() && (log.back() == '\n' || log.back() == ' ')) log.pop_back();
   if (domain < 0) {
-    throw std::runtime_error(DdsErrorMessage("dds_create_domain(" + std::to_string(id) + ")",
-                                             domain) +
-                             (log.empty() ? "" : "; Cyclone says: " + log));
+    throw std::runtime_error(
+        DdsErrorMessage("dds_create_domain(" + std::to_string(id) + ")", domain) +
+        (log.empty() ? "" : "; Cyclone says: " + log));
   }
   constexpr std::string_view kKey = "selected interfaces: ";
   const auto at = trace.find(kKey);

@@ -64,10 +64,8 @@ QosPtr SecurityQos(const SecurityFiles& files) {
   dds_qset_prop(qos.get(), "dds.sec.auth.identity_ca", FileUri(files.identity_ca).c_str());
   dds_qset_prop(qos.get(), "dds.sec.auth.identity_certificate",
                 FileUri(files.identity_certificate).c_str());
-  dds_qset_prop(qos.get(), "dds.sec.auth.private_key",
-                FileUri(files.identity_private_key).c_str());
-  dds_qset_prop(qos.get(), "dds.sec.access.permissions_ca",
-                FileUri(files.permissions_ca).c_str());
+  dds_qset_prop(qos.get(), "dds.sec.auth.private_key", FileUri(files.identity_private_key).c_str());
+  dds_qset_prop(qos.get(), "dds.sec.access.permissions_ca", FileUri(files.permissions_ca).c_str());
   dds_qset_prop(qos.get(), "dds.sec.access.governance", FileUri(files.governance).c_str());
   dds_qset_prop(qos.get(), "dds.sec.access.permissions", FileUri(files.permissions).c_str());
   dds_qset_prop(qos.get(), "dds.sec.auth.library.path", Library("dds_security_auth").c_str());
@@ -76,8 +74,7 @@ QosPtr SecurityQos(const SecurityFiles& files) {
   dds_qset_prop(qos.get(), "dds.sec.access.library.path", Library("dds_security_ac").c_str());
   dds_qset_prop(qos.get(), "dds.sec.access.library.init", "init_access_control");
   dds_qset_prop(qos.get(), "dds.sec.access.library.finalize", "finalize_access_control");
-  dds_qset_prop(qos.get(), "dds.sec.crypto.library.path",
-                Library("dds_security_crypto").c_str());
+  dds_qset_prop(qos.get(), "dds.sec.crypto.library.path", Library("dds_security_crypto").c_str());
   dds_qset_prop(qos.get(), "dds.sec.crypto.library.init", "init_crypto");
   dds_qset_prop(qos.get(), "dds.sec.crypto.library.finalize", "finalize_crypto");
   return qos;

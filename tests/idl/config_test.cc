@@ -57,8 +57,8 @@ class EnvironmentTest : public ::testing::Test {
 
 TEST_F(EnvironmentTest, CycloneddsUriReplacesTheGivenConfigWhenApplied) {
   setenv("CYCLONEDDS_URI", "file:///etc/site.xml", 1);
-  const DomainConfig applied = ResolveDomainConfig(DomainConfig{"<A/>", "code"},
-                                                   EnvironmentConfig::kApply);
+  const DomainConfig applied =
+      ResolveDomainConfig(DomainConfig{"<A/>", "code"}, EnvironmentConfig::kApply);
   EXPECT_EQ(applied.text, "file:///etc/site.xml");
   EXPECT_EQ(applied.origin, "CYCLONEDDS_URI");
   EXPECT_EQ(ResolveDomainConfig(DomainConfig{"<A/>", "code"}, EnvironmentConfig::kIgnore).text,

@@ -59,8 +59,8 @@ constexpr int kBlocks = 3;  // the authorised publisher's blocks
 
 dds::SecurityFiles FilesOf(const fs::path& pki, const std::string& who) {
   const auto f = [&](const std::string& name) { return (pki / name).string(); };
-  return {f("ca_cert.pem"),    f(who + "_cert.pem"), f(who + "_key.pem"),
-          f("ca_cert.pem"),    f("governance.p7s"),  f(who + "_permissions.p7s")};
+  return {f("ca_cert.pem"), f(who + "_cert.pem"), f(who + "_key.pem"),
+          f("ca_cert.pem"), f("governance.p7s"),  f(who + "_permissions.p7s")};
 }
 
 // One participant on its own local domain, `external` on the wire.
@@ -126,19 +126,21 @@ class SecureGearpathd : public ::testing::Test {
     auto set = daemon::BuiltinFrfSet("table1");
     ASSERT_TRUE(set.ok()) << set.error();
     for (const auto& ch : set->channels) {
-      channels_.push_back({ch.sensor, ch.axis == "y" ? Axis::kY : ch.axis == "z" ? Axis::kZ
-                                                                                  : Axis::kX,
+      channels_.push_back({ch.sensor,
+                           ch.axis == "y"   ? Axis::kY
+                           : ch.axis == "z" ? Axis::kZ
+                                            : Axis::kX,
                            "m/s^2", 0.0});
     }
 
-    daemon_ = std::make_unique<ChildProcess>(
-        GEARPATHD_PATH, std::vector<std::string>{"--config", config_path},
-        (dir_ / "gearpathd.log").string());
+    daemon_ = std::make_unique<ChildProcess>(GEARPATHD_PATH,
+                                             std::vector<std::string>{"--config", config_path},
+                                             (dir_ / "gearpathd.log").string());
     ASSERT_TRUE(daemon_->started());
 
     // The test's own authorised subscriber (monitor identity): Status and SuspectedGear.
-    watcher_ = std::make_unique<Peer>(domain_id_ + 1, domain_id_, tag_,
-                                      FilesOf(dir_ / "pki", "monitor"));
+    watcher_ =
+        std::make_unique<Peer>(domain_id_ + 1, domain_id_, tag_, FilesOf(dir_ / "pki", "monitor"));
     status_topic_ = std::make_unique<dds::Topic<gearpath_Status>>(watcher_->participant);
     status_reader_ = std::make_unique<dds::Reader<gearpath_Status>>(*status_topic_);
     gear_topic_ = std::make_unique<dds::Topic<gearpath_SuspectedGear>>(watcher_->participant);
@@ -165,8 +167,7 @@ class SecureGearpathd : public ::testing::Test {
 
   static void MakePki(const fs::path& dir) {
     const std::string log = dir.string() + ".log";
-    const std::string command = "bash '" GEARPATH_SOURCE_DIR
-                                "/tools/make-security-fixtures.sh' '" +
+    const std::string command = "bash '" GEARPATH_SOURCE_DIR "/tools/make-security-fixtures.sh' '" +
                                 dir.string() + "' >'" + log + "' 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0)
         << "tools/make-security-fixtures.sh failed (is openssl installed?):\n"
@@ -181,17 +182,23 @@ class SecureGearpathd : public ::testing::Test {
   }
 
   ToolProcess StartMonitor(int count) {
-    std::vector<std::string> args = {"monitor", "--json",  "--machine", machine_id_, "--count",
-                                     std::to_string(count), "--timeout", "90"};
+    std::vector<std::string> args = {"monitor",   "--json",  "--machine",
+                                     machine_id_, "--count", std::to_string(count),
+                                     "--timeout", "90"};
     const auto dds_args = ToolDds("monitor");
     args.insert(args.end(), dds_args.begin(), dds_args.end());
     return ToolProcess(args, dir_, "monitor");
   }
 
   ToolProcess StartSim(const std::string& who, const std::string& name) {
-    std::vector<std::string> args = {"sim",      "--publish",          "--machine-id",
-                                     machine_id_, "--fast",            "--blocks",
-                                     std::to_string(kBlocks), "--healthy-blocks",
+    std::vector<std::string> args = {"sim",
+                                     "--publish",
+                                     "--machine-id",
+                                     machine_id_,
+                                     "--fast",
+                                     "--blocks",
+                                     std::to_string(kBlocks),
+                                     "--healthy-blocks",
                                      std::to_string(kBlocks)};
     const auto dds_args = ToolDds(who);
     args.insert(args.end(), dds_args.begin(), dds_args.end());
@@ -355,7 +362,8 @@ TEST_F(SecureGearpathd, ParticipantsWithoutValidCredentialsCanNeitherInjectNorRe
 
   // Every poll: each rogue writes a block and a fake alarm and tries to read a verdict.
   std::uint64_t rogue_sequence = 0;
-  std::size_t overheard = 0;
+  std::size_t overheard = 0;     // the daemon's verdicts read by a rogue
+  std::size_t rogue_echoes = 0;  // the rogues' own fakes read by a rogue (they are live)
   std::vector<dds::Owned<gearpath_SuspectedGear>> samples(4);
   std::vector<dds::SampleInfo> infos(4);
   auto act = [&] {
@@ -366,7 +374,8 @@ TEST_F(SecureGearpathd, ParticipantsWithoutValidCredentialsCanNeitherInjectNorRe
     for (auto& r : eavesdroppers) {  // the rogues hear each other's fakes; not the daemon
       auto n = r.Take(samples, infos);
       for (std::size_t i = 0; n && i < *n; ++i) {
-        overheard += infos[i].valid_data && dds::GetString(samples[i]->gear_name) != "SPOOFED";
+        if (!infos[i].valid_data) continue;
+        (dds::GetString(samples[i]->gear_name) == "SPOOFED" ? rogue_echoes : overheard) += 1;
       }
     }
   };
@@ -383,11 +392,20 @@ TEST_F(SecureGearpathd, ParticipantsWithoutValidCredentialsCanNeitherInjectNorRe
     CollectVerdicts();
     std::this_thread::sleep_for(50ms);
   }
-  ASSERT_EQ(monitor.Wait(0ms), std::optional<int>(0)) << "the monitor did not get its verdicts"
-                                                      << Logs();
+  ASSERT_EQ(monitor.Wait(0ms), std::optional<int>(0))
+      << "the monitor did not get its verdicts" << Logs();
   ASSERT_EQ(sim.Wait(30s), std::optional<int>(0)) << Logs();
   ASSERT_TRUE(WaitStatus([](const auto& m) { return m.blocks_processed >= kBlocks; }, 30s))
       << Logs();
+  // Positive control: the rogues are live on the wire (the foreign CA's spoofer and
+  // eavesdropper authenticate each other and exchange fakes), so what they did not get through
+  // was refused, not missed.
+  const auto echo_deadline = Clock::now() + 30s;
+  while (rogue_echoes == 0 && Clock::now() < echo_deadline) {
+    act();
+    std::this_thread::sleep_for(50ms);
+  }
+  EXPECT_GT(rogue_echoes, 0u) << "the rogue participants never heard each other";
   act();
   CollectVerdicts();
 
