@@ -6,10 +6,12 @@
 // the older ones keep their short names ("machine", "block", "gear", ...). It stops by
 // itself after --count verdicts (SuspectedGear samples, one per processed block) or after
 // --timeout seconds. Result topics are transient-local, so a monitor started late still gets
-// each machine's latest results at once.
+// each machine's latest results at once. A daemon whose Status stops arriving (killed, hung)
+// is shown NOT RESPONDING (a DaemonSilent line); docs/tools.md lists every JSON key.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -199,9 +201,44 @@ json ToJson(const gearpath_Status& s) {
 }
 
 // The latest of each result topic per machine, for the terminal table.
+using Clock = std::chrono::steady_clock;
+
 struct MachineView {
   json dominant, gear, indicators, condition;
+  Clock::time_point gear_received{};  // when the latest verdict arrived (its age on screen)
 };
+
+// What the monitor knows of one daemon: its latest Status and when Statuses arrive. A daemon
+// that dies publishes nothing more, so its silence is the only sign: it is declared silent
+// after 3 of its status periods (measured between arrivals), at least 2 s.
+struct DaemonView {
+  json status;
+  Clock::time_point last_seen{};
+  double period_s = 1.0;
+  bool silent = false;  // reported silent, not heard since
+
+  double SilentAfter() const { return std::max(2.0, 3.0 * period_s); }
+  void Heard(json j, Clock::time_point now) {
+    if (last_seen != Clock::time_point{}) {
+      const double gap = std::chrono::duration<double>(now - last_seen).count();
+      period_s = 0.8 * period_s + 0.2 * std::clamp(gap, 0.05, 600.0);
+    }
+    last_seen = now;
+    status = std::move(j);
+    silent = false;
+  }
+};
+
+double SecondsSince(Clock::time_point t, Clock::time_point now) {
+  return std::chrono::duration<double>(now - t).count();
+}
+
+// ANSI colour for a verdict state on a terminal: alarm red, suspected yellow.
+std::string Highlighted(const std::string& state) {
+  if (state == "alarm") return "\x1b[1;31mALARM\x1b[0m";
+  if (state == "suspected") return "\x1b[1;33msuspected\x1b[0m";
+  return state;
+}
 
 std::string Fixed(double v, int decimals) {
   char buf[64];
@@ -238,14 +275,17 @@ std::string ScoreText(const json& c) {
   return s;
 }
 
-void DrawTable(const std::map<std::string, MachineView>& machines, const json& status) {
+void DrawTable(const std::map<std::string, MachineView>& machines,
+               const std::map<std::string, DaemonView>& daemons) {
+  const auto now = Clock::now();
   std::string out = "\x1b[H\x1b[2J";  // home + clear: redraw in place
   out += "gearpath monitor  (Ctrl-C to stop)\n\n";
   for (const auto& [id, v] : machines) {
     out += "machine " + id + "\n";
     if (!v.gear.is_null()) {
-      out += "  verdict    block " + v.gear["block"].dump() + ": " +
-             v.gear["state"].get<std::string>();
+      out += "  verdict    block " + v.gear["block"].dump() + " (" +
+             Fixed(SecondsSince(v.gear_received, now), 0) + " s ago): " +
+             Highlighted(v.gear["state"].get<std::string>());
       if (v.gear["state"] == "learning") out += BaselineProgress(v.condition, v.gear);
       if (!v.gear["gear"].get<std::string>().empty()) {
         out += "  gear " + v.gear["gear"].get<std::string>() + " on " +
@@ -284,10 +324,18 @@ void DrawTable(const std::map<std::string, MachineView>& machines, const json& s
     }
     out += "\n";
   }
-  if (!status.is_null()) {
-    out += "daemon " + status["daemon"].get<std::string>() + ": " +
-           status["state"].get<std::string>() + ", up " +
-           Fixed(status["uptime_s"].get<double>(), 0) + " s\n";
+  for (const auto& [daemon, d] : daemons) {
+    const json& status = d.status;
+    const double age = SecondsSince(d.last_seen, now);
+    out += "daemon " + daemon + ": ";
+    if (d.silent) {
+      out += "\x1b[1;31mNOT RESPONDING\x1b[0m (no Status for " + Fixed(age, 0) +
+             " s; last said " + status["state"].get<std::string>() + ")\n";
+    } else {
+      out += status["state"].get<std::string>() + ", up " +
+             Fixed(status["uptime_s"].get<double>(), 0) + " s, Status " + Fixed(age, 1) +
+             " s ago\n";
+    }
     for (const auto& m : status["machines"]) {
       out += "  " + m["machine"].get<std::string>() + ": received " + m["received"].dump() +
              ", processed " + m["processed"].dump() + ", rejected " + m["rejected"].dump();
@@ -364,16 +412,16 @@ int RunMonitor(const MonitorOptions& opt) {
   Subscription<gearpath_ConditionIndicators> condition(participant, waitset, 5);
 
   std::map<std::string, MachineView> table;
-  json last_status;
+  std::map<std::string, DaemonView> daemons;
   int verdicts = 0;
   const auto start = std::chrono::steady_clock::now();
 
   auto emit = [&](json j, const std::string& machine, json MachineView::*slot) {
     if (!wanted.empty() && !machine.empty() && !wanted.count(machine)) return;
     if (terminal) {
+      if (slot == &MachineView::gear) table[machine].gear_received = Clock::now();
       if (slot != nullptr) table[machine].*slot = std::move(j);
-      else last_status = std::move(j);
-      DrawTable(table, last_status);
+      DrawTable(table, daemons);
     } else {
       static const json kNone;
       const json& latest = machine.empty() ? kNone : table[machine].condition;
@@ -433,9 +481,32 @@ int RunMonitor(const MonitorOptions& opt) {
       ++verdicts;
     });
     ok = ok && drain(status, [&](const auto& s) {
-      if (opt.status) emit(ToJson(s), "", nullptr);
+      if (!opt.status) return;
+      json j = ToJson(s);
+      daemons[std::string(GetString(s.daemon_id))].Heard(j, Clock::now());
+      emit(std::move(j), "", nullptr);
     });
     if (!ok) return kExitFailure;
+    // A daemon that stopped talking without saying STOPPING: killed, hung or cut off.
+    for (auto& [id, d] : daemons) {
+      const double age = SecondsSince(d.last_seen, Clock::now());
+      if (d.silent || d.status["state"] == "stopping" || age < d.SilentAfter()) continue;
+      d.silent = true;
+      json j = {{"topic", "DaemonSilent"},
+                {"daemon", id},
+                {"silent_s", age},
+                {"last_state", d.status["state"]}};
+      if (terminal) {
+        DrawTable(table, daemons);
+      } else {
+        std::puts(opt.json_lines ? j.dump().c_str()
+                                 : ("status    daemon " + id + " NOT RESPONDING: no Status for " +
+                                    Fixed(age, 1) + " s (last said " +
+                                    d.status["state"].get<std::string>() + ")")
+                                       .c_str());
+        std::fflush(stdout);
+      }
+    }
     if (opt.count > 0 && verdicts >= opt.count) return kExitOk;
   }
 }
