@@ -9,6 +9,46 @@
 
 namespace gearpath::daemon {
 
+namespace {
+
+dds::SecurityFiles SecurityFilesOf(const DaemonConfig& config) {
+  const DdsSecurityFiles& s = config.dds_security;
+  return {s.identity_ca,    s.identity_certificate, s.identity_private_key,
+          s.permissions_ca, s.governance,           s.permissions};
+}
+
+// CheckSecurityFiles' "key: why" lines, each prefixed with the section.
+std::string InSecuritySection(const std::string& lines) {
+  std::string message;
+  std::size_t from = 0;
+  while (from < lines.size()) {
+    const std::size_t end = std::min(lines.find('\n', from), lines.size());
+    message += (message.empty() ? "" : "\n") + ("dds.security." + lines.substr(from, end - from));
+    from = end + 1;
+  }
+  return message;
+}
+
+}  // namespace
+
+Status CheckDdsFiles(const DaemonConfig& config) {
+  std::string errors;
+  if (!config.dds_config_file.empty()) {
+    try {
+      (void)dds::ResolveDomainConfig(config.dds_config_file, dds::EnvironmentConfig::kIgnore);
+    } catch (const std::exception& e) {
+      errors = std::string("dds.config: ") + e.what();
+    }
+  }
+  if (const dds::SecurityFiles files = SecurityFilesOf(config); files.enabled()) {
+    if (Status readable = dds::CheckSecurityFiles(files); !readable) {
+      errors += (errors.empty() ? "" : "\n") + InSecuritySection(readable.error());
+    }
+  }
+  if (!errors.empty()) return Error{errors};
+  return Status::Ok();
+}
+
 dds::DomainConfig DaemonDomainConfig(const DaemonConfig& config) {
   dds::DomainConfig resolved;
   try {
@@ -27,9 +67,7 @@ dds::DomainConfig DaemonDomainConfig(const DaemonConfig& config) {
 }
 
 dds::SecurityFiles DaemonSecurityFiles(const DaemonConfig& config) {
-  const DdsSecurityFiles& s = config.dds_security;
-  const dds::SecurityFiles files{s.identity_ca,    s.identity_certificate, s.identity_private_key,
-                                 s.permissions_ca, s.governance,           s.permissions};
+  const dds::SecurityFiles files = SecurityFilesOf(config);
   if (!files.enabled()) {
     spdlog::info(
         "DDS Security off (dds.security names no files): any participant on the "
@@ -37,15 +75,7 @@ dds::SecurityFiles DaemonSecurityFiles(const DaemonConfig& config) {
     return files;
   }
   if (Status readable = dds::CheckSecurityFiles(files); !readable) {
-    std::string message;
-    std::size_t from = 0;
-    const std::string& lines = readable.error();
-    while (from < lines.size()) {  // prefix every "key: why" line with the section
-      const std::size_t end = std::min(lines.find('\n', from), lines.size());
-      message += (message.empty() ? "" : "\n") + ("dds.security." + lines.substr(from, end - from));
-      from = end + 1;
-    }
-    throw std::runtime_error(message);
+    throw std::runtime_error(InSecuritySection(readable.error()));
   }
   spdlog::info("DDS Security on: identity {}, permissions {}, governance {} (plugins from {})",
                files.identity_certificate, files.permissions, files.governance,

@@ -10,6 +10,11 @@
 
 namespace gearpath::daemon {
 
+// `dds.config` and the `dds.security` files exist and are readable (Cyclone verifies their
+// content when the domain and participant are created). Errors name the key and the file, one
+// per line. gearpathd --check-config runs it, as the start does.
+Status CheckDdsFiles(const DaemonConfig& config);
+
 // The configuration for the daemon's Domain. Logs its origin and the interfaces Cyclone selects
 // (found by a probe, so call it before the daemon's Domain exists). Throws std::runtime_error
 // naming `dds.config` and the file if it cannot be read, or with Cyclone's reason if Cyclone

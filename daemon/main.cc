@@ -12,6 +12,7 @@
 
 #include "daemon/config_schema.h"
 #include "daemon/daemon_config.h"
+#include "daemon/dds_setup.h"
 #include "daemon/gearpathd.h"
 #include "daemon/machine_runtime.h"
 #include "daemon/signal_events.h"
@@ -85,6 +86,10 @@ int main(int argc, char** argv) {
     return kExitBadConfig;
   }
   for (const auto& [id, m] : machines->machines) spdlog::info("machine {}: {}", id, m->summary);
+  if (gearpath::Status dds_files = CheckDdsFiles(*config); !dds_files) {
+    spdlog::critical("invalid configuration:\n{}", dds_files.error());
+    return kExitBadConfig;
+  }
   if (check_config) {
     std::printf("%s: configuration valid, %zu machine(s) built\n", config->origin.c_str(),
                 machines->machines.size());
