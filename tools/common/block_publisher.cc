@@ -1,5 +1,8 @@
 #include "tools/common/block_publisher.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <string>
 #include <thread>
 
 #include "idl/dds/accel_block_wire.h"
@@ -54,7 +57,66 @@ Status BlockPublisher::Publish(const AccelBlockView& block) {
   }
   Status filled = dds::FillWireBlock(block, *s.sample);
   if (!filled) return Error{"block " + std::to_string(block.sequence) + ": " + filled.error()};
-  return s.writer.Write(*s.sample);
+  return WriteOrWait(block);
+}
+
+// The daemon may go away under us (killed, restarted, upgraded). While it is still matched but
+// no longer acknowledges, Write times out; once its lease has expired nobody is matched and a
+// write would go nowhere. Either way the block is held and retried until a subscriber takes it
+// again, for at most resume_timeout; pacing then restarts from this block (no burst).
+Status BlockPublisher::WriteOrWait(const AccelBlockView& block) {
+  Impl& s = *impl_;
+  const auto give_up = std::chrono::steady_clock::now() + s.options.resume_timeout;
+  bool waited = false;
+  auto note = [&](const char* why) {
+    if (waited) return;
+    waited = true;
+    std::fprintf(stderr, "gearpath: block %llu: %s; waiting up to %lld s for a subscriber\n",
+                 static_cast<unsigned long long>(block.sequence), why,
+                 static_cast<long long>(s.options.resume_timeout.count()));
+  };
+  const auto min = static_cast<std::uint32_t>(std::max(0, s.options.min_subscribers));
+  for (;;) {
+    Result<std::uint32_t> matched = s.writer.MatchedReaders();
+    if (!matched) return Error{matched.error()};
+    std::string last_error;
+    if (*matched < min) {
+      note("no daemon subscribed any more");
+    } else if (Status written = s.writer.Write(*s.sample); !written) {
+      // Cyclone's "Timeout": a matched reader did not acknowledge within max_blocking_time.
+      if (written.error().find("Timeout") == std::string::npos) return written;
+      last_error = written.error();
+      note("a subscriber stopped acknowledging (daemon gone or stalled)");
+    } else if (s.options.speedup <= 0) {
+      break;  // --fast: flow control alone, for throughput
+    } else {
+      // Paced (real-time or N x) streams also wait for the acknowledgement: a daemon killed
+      // after matching would otherwise swallow every block until its lease expires. A block
+      // written again after a crash is at worst rejected by the daemon as a duplicate.
+      const dds_return_t rc = dds_wait_for_acks(s.writer.handle(), DDS_SECS(5));
+      Result<std::uint32_t> after = s.writer.MatchedReaders();
+      if (rc == DDS_RETCODE_TIMEOUT) {
+        note("not acknowledged within 5 s (daemon gone or stalled)");
+      } else if (after && *after < min) {
+        note("no daemon subscribed any more");  // acknowledged by nobody: the reader left
+      } else {
+        break;
+      }
+    }
+    if (std::chrono::steady_clock::now() >= give_up) {
+      return Error{"block " + std::to_string(block.sequence) + ": no subscriber took it within " +
+                   std::to_string(s.options.resume_timeout.count()) + " s" +
+                   (last_error.empty() ? std::string() : " (" + last_error + ")")};
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  if (waited) {
+    std::fprintf(stderr, "gearpath: block %llu taken again; publishing resumed\n",
+                 static_cast<unsigned long long>(block.sequence));
+    s.first_t0_ns = block.t0_ns;
+    s.first_wall = std::chrono::steady_clock::now();
+  }
+  return Status::Ok();
 }
 
 Status BlockPublisher::Flush(std::chrono::milliseconds timeout) {

@@ -23,6 +23,9 @@ struct PublisherOptions {
   double speedup = 1.0;     // 1 = real time, N = N times faster, 0 = as fast as possible
   int min_subscribers = 1;  // wait for this many matched readers before the first block
   std::chrono::milliseconds match_timeout{10000};
+  // When the daemon goes away mid-stream, hold the block and wait this long for a subscriber
+  // to take it again (a restarted daemon) before giving up.
+  std::chrono::seconds resume_timeout{300};
 };
 
 class BlockPublisher {
@@ -34,12 +37,14 @@ class BlockPublisher {
   BlockPublisher& operator=(const BlockPublisher&) = delete;
 
   // Waits for the subscribers (first call only), sleeps until the block is due, publishes it.
+  // A subscriber that disappears later is waited for (resume_timeout), the block held.
   Status Publish(const AccelBlockView& block);
 
   // Blocks until every matched reader has acknowledged what was written, or the timeout.
   Status Flush(std::chrono::milliseconds timeout);
 
  private:
+  Status WriteOrWait(const AccelBlockView& block);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
