@@ -350,6 +350,9 @@ void Gearpathd::Impl::Housekeeping(bool force_status) {
     next_throughput = now + throughput_period;
   }
   SaveDueMachines(false);
+  for (const std::string& id : machine_filter.TakeNewForeignIds()) {
+    spdlog::info("ignoring blocks of machine \"{}\": not in this daemon's configuration", id);
+  }
   if (!primary_id.empty() && now >= next_primary_check) WatchPrimary();
   if (watchdog_period.count() > 0 && now >= next_watchdog) {
     NotifySystemd("WATCHDOG=1");

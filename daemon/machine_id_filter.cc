@@ -20,11 +20,34 @@ bool MachineIdFilter::Admits(std::string_view id) noexcept {
                             [](const auto& a, const auto& b) { return a < b; });
 }
 
+void MachineIdFilter::Remember(std::string_view id) noexcept {
+  std::lock_guard lock(mutex_);
+  if (foreign_count_ == kRememberedIds) return;
+  for (std::size_t i = 0; i < foreign_count_; ++i) {
+    if (std::string_view(foreign_[i].data()) == id) return;
+  }
+  const std::size_t n = std::min(id.size(), foreign_[foreign_count_].size() - 1);
+  std::copy_n(id.data(), n, foreign_[foreign_count_].data());
+  foreign_[foreign_count_][n] = '\0';
+  ++foreign_count_;
+}
+
+std::vector<std::string> MachineIdFilter::TakeNewForeignIds() {
+  std::lock_guard lock(mutex_);
+  std::vector<std::string> out;
+  for (; foreign_taken_ < foreign_count_; ++foreign_taken_) {
+    out.emplace_back(foreign_[foreign_taken_].data());
+  }
+  return out;
+}
+
 bool MachineIdFilter::Accept(const void* sample, void* arg) noexcept {
   auto* self = static_cast<MachineIdFilter*>(arg);
   const auto* block = static_cast<const gearpath_AccelBlock*>(sample);
-  if (self->Admits(dds::GetString(block->machine_id))) return true;
+  const std::string_view id = dds::GetString(block->machine_id);
+  if (self->Admits(id)) return true;
   self->dropped_.fetch_add(1, std::memory_order_relaxed);
+  self->Remember(id);
   return false;
 }
 

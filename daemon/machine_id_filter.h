@@ -8,6 +8,7 @@
 // Only the daemon's own machines' instances (at most 64) ever exist in the reader.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <mutex>
@@ -30,12 +31,23 @@ class MachineIdFilter {
   // Foreign blocks dropped since start.
   std::uint64_t dropped() const noexcept { return dropped_.load(std::memory_order_relaxed); }
 
+  // Foreign ids first seen since the last call (the first kRememberedIds only), for the log:
+  // a misspelt machine id shows up as a foreign one.
+  std::vector<std::string> TakeNewForeignIds();
+
+  static constexpr std::size_t kRememberedIds = 64;
+
  private:
   bool Admits(std::string_view machine_id) noexcept;
+  void Remember(std::string_view machine_id) noexcept;
 
   std::mutex mutex_;
   std::vector<std::string> ids_;  // sorted
   std::atomic<std::uint64_t> dropped_{0};
+  // Fixed storage: the callback must not allocate.
+  std::array<std::array<char, 65>, kRememberedIds> foreign_{};
+  std::size_t foreign_count_ = 0;
+  std::size_t foreign_taken_ = 0;
 };
 
 }  // namespace gearpath::daemon
