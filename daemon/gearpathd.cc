@@ -40,6 +40,7 @@ Clock::duration Seconds(double s) { return duration_cast<Clock::duration>(durati
 constexpr dds_attach_t kBlocksToken = 1;
 constexpr dds_attach_t kGuardToken = 2;
 constexpr std::size_t kMaxForeignIdsLogged = 64;
+constexpr std::uint64_t kRejectionLinesPerPeriod = 10;
 
 // A configuration and its built machines, handed from the lifecycle thread to the loop.
 struct Generation {
@@ -313,6 +314,10 @@ void Gearpathd::Impl::LogThroughput() {
                         c.rejected - before.rejected,
                         reasons.empty() ? "" : " (" + reasons + ")", c.lost - before.lost,
                         c.latency_last_ms, c.latency_max_ms);
+    if (c.rejection_lines_suppressed > before.rejection_lines_suppressed) {
+      line += fmt::format(" ({} rejection lines not logged)",
+                          c.rejection_lines_suppressed - before.rejection_lines_suppressed);
+    }
     if (c.indicators_omitted > before.indicators_omitted) {
       line += fmt::format(", {} condition indicator entries over the IDL bounds left out",
                           c.indicators_omitted - before.indicators_omitted);
@@ -333,6 +338,7 @@ void Gearpathd::Impl::LogThroughput() {
   NotifySystemd(fmt::format("STATUS=running: {} machine(s), {} block(s) processed, {} "
                             "rejected since start",
                             machine_ids.size(), processed, rejected));
+  for (auto& [id, c] : counters) c.rejection_lines_this_period = 0;
   counters_at_last_summary = counters;
   foreign_blocks_at_last_summary = foreign_now;
   last_summary = now;
@@ -464,8 +470,15 @@ void Gearpathd::Impl::HandleBlock(const gearpath_AccelBlock& sample,
     ++r->second;
     c.last_rejection = fmt::format("{}: {}", reason, outcome.message.view());
     MarkChanged(m, save_marks[m.id].last_state);  // counters changed
-    spdlog::warn("{}: block {} rejected ({}): {}", m.id, view.sequence, reason,
-                 outcome.message.view());
+    // A peer sending bad blocks must not flood the log: the first kRejectionLinesPerPeriod
+    // of each machine per throughput period are logged, the rest counted in the summary.
+    if (c.rejection_lines_this_period < kRejectionLinesPerPeriod) {
+      ++c.rejection_lines_this_period;
+      spdlog::warn("{}: block {} rejected ({}): {}", m.id, view.sequence, reason,
+                   outcome.message.view());
+    } else {
+      ++c.rejection_lines_suppressed;
+    }
     return;
   }
   const BlockResult& r = m.result;
@@ -559,6 +572,7 @@ void Gearpathd::Impl::Loop() {
     Housekeeping(false);
   }
   SaveDueMachines(true);
+  LogThroughput();  // the last period's figures, rate-limited lines included
   PublishStatus(gearpath_STOPPING);  // the last word: subscribers see a clean stop
 }
 

@@ -57,6 +57,9 @@ struct MachineCounters {
   // Condition indicators left off the wire by the IDL bounds (docs/topics.md): sets, values
   // and truncated names, summed over blocks; warned about once per machine.
   std::uint64_t indicators_omitted = 0;
+  // Rejection log lines: written this throughput period, and left out (rate limit) since start.
+  std::uint64_t rejection_lines_this_period = 0;
+  std::uint64_t rejection_lines_suppressed = 0;
 };
 
 }  // namespace gearpath::daemon
