@@ -8,7 +8,6 @@
 #include <chrono>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <stdexcept>
 #include <thread>
 
@@ -39,7 +38,6 @@ Clock::duration Seconds(double s) { return duration_cast<Clock::duration>(durati
 
 constexpr dds_attach_t kBlocksToken = 1;
 constexpr dds_attach_t kGuardToken = 2;
-constexpr std::size_t kMaxForeignIdsLogged = 64;
 constexpr std::uint64_t kRejectionLinesPerPeriod = 10;
 
 // A configuration and its built machines, handed from the lifecycle thread to the loop.
@@ -179,7 +177,6 @@ struct Gearpathd::Impl {
   std::vector<dds::SampleInfo> status_infos;
   std::uint64_t foreign_blocks = 0;
   std::uint64_t foreign_blocks_at_last_summary = 0;
-  std::set<std::string, std::less<>> foreign_ids;
   std::uint64_t publish_failures = 0;
   Clock::time_point next_status{};
   Clock::time_point next_throughput{};
@@ -250,7 +247,6 @@ void Gearpathd::Impl::Adopt(Generation generation) {
   save_period = Seconds(c.state_save_period_s);
   if (c.standby_primary != primary_id) {
     primary_id = c.standby_primary;
-    takeover_after = Seconds(c.takeover_after_s);
     // A new standby gives its primary one takeover period to show itself before it publishes.
     publishing = primary_id.empty();
     primary_last_seen = Clock::now();
@@ -444,11 +440,9 @@ void Gearpathd::Impl::HandleBlock(const gearpath_AccelBlock& sample,
   const std::string_view id = dds::GetString(sample.machine_id);
   const auto it = machines.machines.find(id);
   if (it == machines.machines.end()) {
-    // Another daemon's machine (or nobody's): not ours to judge, so not a rejection.
+    // Let through by the machine filter just before a reload changed the machines: not ours
+    // to judge, so not a rejection (the filter logs foreign ids; this only counts them).
     ++foreign_blocks;
-    if (foreign_ids.size() < kMaxForeignIdsLogged && foreign_ids.emplace(id).second) {
-      spdlog::info("ignoring blocks of machine \"{}\": not in this daemon's configuration", id);
-    }
     return;
   }
   MachineRuntime& m = *it->second;

@@ -71,6 +71,7 @@ struct AlarmOptions {
   int alarm_k = 2;           // exceedances in the window for kAlarm, [suspect_k, n]
   double clear_level = 0.7;  // hysteresis level in threshold units, (0, 1]
   int clear_blocks = 3;      // consecutive quiet blocks to clear, >= 1
+  bool operator==(const AlarmOptions&) const = default;
 };
 
 struct AlarmEvidence {

@@ -367,13 +367,8 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
   }
   // Alarm options from the configuration in force win: a changed window or k restarts the
   // alarm model (the baseline is kept).
-  const AlarmOptions& want = now.alarm->options();
-  const AlarmOptions& had = s.alarm.options;
-  const bool same_alarm = want.n == had.n && want.suspect_k == had.suspect_k &&
-                          want.alarm_k == had.alarm_k && want.clear_level == had.clear_level &&
-                          want.clear_blocks == had.clear_blocks;
   std::optional<AlarmModel> alarm;
-  if (same_alarm) {
+  if (s.alarm.options == now.alarm->options()) {
     auto a = AlarmModel::FromState(s.alarm);
     if (!a) return Error{a.error()};
     alarm.emplace(std::move(a.value()));

@@ -2,9 +2,6 @@
 // fractured tooth on one gear is published block by block; the daemon's result topics must name
 // that gear and a bearing of its mesh. The truth is the fault the simulator was given and the
 // gear train's topology, never a number computed by the daemon.
-#include "core/model/gear_train.h"
-#include "core/model/lumped_gearbox_model.h"
-#include "core/simulation/gearbox_simulator.h"
 #include "tests/integration/gearpathd_fixture.h"
 
 namespace gearpath::testing {
@@ -17,23 +14,6 @@ class GearpathdFaultTracing : public GearpathdOverDds {
   void Configure(json& config) override {
     config["machines"][0]["analysis"]["baseline"]["learning_blocks"] = kBaselineBlocks;
   }
-
-  GearboxSimulator Simulator(FaultType type, const std::string& gear, std::uint64_t seed) {
-    auto model = LumpedGearboxModel::Create(Table1Parameters());
-    EXPECT_TRUE(model.ok()) << model.error();
-    SimulatorConfig c;
-    c.machine_id = machine_id_;
-    c.fault.type = type;
-    c.fault.gear = gear;
-    c.sample_rate_hz = kSampleRate;
-    c.block_length = kBlockLength;
-    c.noise_relative = 0.05;
-    c.seed = seed;
-    c.include_housing_channel = false;  // p1..p3: the rows of builtin:table1 (Eq. 22)
-    auto sim = GearboxSimulator::Create(model.value(), GearTrain::Table1(), c);
-    EXPECT_TRUE(sim.ok()) << sim.error();
-    return std::move(sim.value());
-  }
 };
 
 TEST_F(GearpathdFaultTracing, AFracturedToothOnTheInputGearIsTracedToThatGearAndItsMesh) {
@@ -41,13 +21,13 @@ TEST_F(GearpathdFaultTracing, AFracturedToothOnTheInputGearIsTracedToThatGearAnd
   const std::string faulty = "G1";
   std::uint64_t seq = 1;
   AccelBlock block;
-  GearboxSimulator healthy = Simulator(FaultType::kNone, "", 7);
+  GearboxSimulator healthy = Table1Simulator(FaultType::kNone, "", 7);
   for (int i = 0; i < kBaselineBlocks; ++i) {
     healthy.NextBlock(block);
     block.sequence = seq++;
     Publish(block);
   }
-  GearboxSimulator broken = Simulator(FaultType::kToothFracture, faulty, 21);
+  GearboxSimulator broken = Table1Simulator(FaultType::kToothFracture, faulty, 21);
   for (int i = 0; i < 2; ++i) {
     broken.NextBlock(block);
     block.sequence = seq++;

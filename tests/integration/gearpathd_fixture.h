@@ -25,6 +25,9 @@
 #include <vector>
 
 #include "core/common/accel_block.h"
+#include "core/model/gear_train.h"
+#include "core/model/lumped_gearbox_model.h"
+#include "core/simulation/gearbox_simulator.h"
 #include "daemon/daemon_config.h"
 #include "daemon/machine_setup_builder.h"
 #include "idl/dds/gearpath_topics.h"
@@ -156,6 +159,25 @@ class GearpathdOverDds : public ::testing::Test {
     b.samples.resize(channels_.size() * kBlockLength);
     for (float& x : b.samples) x = noise(rng_);
     return b;
+  }
+
+  // The simulated Table-1 gearbox streaming as our machine: channels p1..p3, the rows of
+  // builtin:table1 (Eq. 22), 5 % noise.
+  GearboxSimulator Table1Simulator(FaultType type, const std::string& gear, std::uint64_t seed) {
+    auto model = LumpedGearboxModel::Create(Table1Parameters());
+    EXPECT_TRUE(model.ok()) << model.error();
+    SimulatorConfig c;
+    c.machine_id = machine_id_;
+    c.fault.type = type;
+    c.fault.gear = gear;
+    c.sample_rate_hz = kSampleRate;
+    c.block_length = kBlockLength;
+    c.noise_relative = 0.05;
+    c.seed = seed;
+    c.include_housing_channel = false;
+    auto sim = GearboxSimulator::Create(model.value(), GearTrain::Table1(), c);
+    EXPECT_TRUE(sim.ok()) << sim.error();
+    return std::move(sim.value());
   }
 
   void Publish(const AccelBlock& block) {

@@ -97,7 +97,8 @@ TEST_F(GearpathdSoak, EveryResultOfEveryBlockArrivesAndMemoryStaysFlat) {
   EXPECT_EQ(n_gear, blocks);
   EXPECT_EQ(n_condition, blocks);
   ASSERT_GT(rss_warm, 0);
-  const double growth = 100.0 * static_cast<double>(rss_end - rss_warm) / rss_warm;
+  const double growth =
+      100.0 * static_cast<double>(rss_end - rss_warm) / static_cast<double>(rss_warm);
   std::printf("soak: %llu blocks, results dominant %llu gear %llu condition %llu; RSS %ld kB "
               "after %llu blocks, %ld kB at the end (%+.2f %%)\n",
               static_cast<unsigned long long>(blocks), static_cast<unsigned long long>(n_dominant),

@@ -2,9 +2,6 @@
 // (daemon/machine_state_store.h). The truth is the fault the simulator was given: a daemon
 // that relearned its baseline after the restart would take the present fracture for healthy
 // and answer learning, then no_fault.
-#include "core/model/gear_train.h"
-#include "core/model/lumped_gearbox_model.h"
-#include "core/simulation/gearbox_simulator.h"
 #include "tests/integration/gearpathd_fixture.h"
 
 namespace gearpath::testing {
@@ -17,23 +14,6 @@ class GearpathdState : public GearpathdOverDds {
   void Configure(json& config) override {
     config["machines"][0]["analysis"]["baseline"]["learning_blocks"] = kBaselineBlocks;
     config["state"]["directory"] = (dir_ / "state").string();
-  }
-
-  GearboxSimulator Simulator(FaultType type, const std::string& gear, std::uint64_t seed) {
-    auto model = LumpedGearboxModel::Create(Table1Parameters());
-    EXPECT_TRUE(model.ok()) << model.error();
-    SimulatorConfig c;
-    c.machine_id = machine_id_;
-    c.fault.type = type;
-    c.fault.gear = gear;
-    c.sample_rate_hz = kSampleRate;
-    c.block_length = kBlockLength;
-    c.noise_relative = 0.05;
-    c.seed = seed;
-    c.include_housing_channel = false;  // p1..p3: the rows of builtin:table1
-    auto sim = GearboxSimulator::Create(model.value(), GearTrain::Table1(), c);
-    EXPECT_TRUE(sim.ok()) << sim.error();
-    return std::move(sim.value());
   }
 
   // Publishes one block and returns the daemon's verdict on it.
@@ -83,7 +63,7 @@ class GearpathdState : public GearpathdOverDds {
   }
 
   void LearnHealthy() {
-    GearboxSimulator healthy = Simulator(FaultType::kNone, "", 7);
+    GearboxSimulator healthy = Table1Simulator(FaultType::kNone, "", 7);
     for (int i = 0; i < kBaselineBlocks; ++i) {
       auto v = Judge(healthy);
       ASSERT_TRUE(v.has_value()) << "no verdict on healthy block " << i;
@@ -97,7 +77,7 @@ class GearpathdState : public GearpathdOverDds {
 
 TEST_F(GearpathdState, AfterAKillWithAFractureThePresentAlarmIsResumedNotRelearned) {
   LearnHealthy();
-  GearboxSimulator broken = Simulator(FaultType::kToothFracture, "G1", 21);
+  GearboxSimulator broken = Table1Simulator(FaultType::kToothFracture, "G1", 21);
   bool alarmed = false;
   for (int i = 0; i < 8 && !alarmed; ++i) {
     auto v = Judge(broken);
@@ -121,7 +101,7 @@ TEST_F(GearpathdState, ACleanRestartKeepsTheBaselineAndTheCounters) {
   Restart(SIGTERM);
   ASSERT_TRUE(WaitStatus([&](const auto& m) { return m.blocks_processed == processed; }, 30s))
       << "counters after restart: processed " << last_status_.blocks_processed;
-  GearboxSimulator healthy = Simulator(FaultType::kNone, "", 99);
+  GearboxSimulator healthy = Table1Simulator(FaultType::kNone, "", 99);
   auto v = Judge(healthy);
   ASSERT_TRUE(v.has_value());
   EXPECT_NE((*v)->state, gearpath_LEARNING) << (*v)->reason;
@@ -130,7 +110,7 @@ TEST_F(GearpathdState, ACleanRestartKeepsTheBaselineAndTheCounters) {
 
 TEST_F(GearpathdState, AReloadKeepsTheBaselineUnlessItChangesWhatItMeasures) {
   LearnHealthy();
-  GearboxSimulator healthy = Simulator(FaultType::kNone, "", 99);
+  GearboxSimulator healthy = Table1Simulator(FaultType::kNone, "", 99);
   // Unchanged configuration: SIGHUP keeps the learned baseline.
   daemon_->Signal(SIGHUP);
   ASSERT_TRUE(WaitStatus([](const auto&) { return true; }, 30s));
