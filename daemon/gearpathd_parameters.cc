@@ -264,13 +264,20 @@ ParamSpec AnalysisSection() {
                Number("discrepancy_factor", "Safety factor tau of the discrepancy rule.", 1.0,
                       100.0, 1.0),
                Integer("iterations", "MWI iteration count K (seed Algorithm 1).", 1, 1000, 10)}),
-       Object("speed", "Input-shaft speed when the block carries none.",
+       Object("speed",
+              "Input-shaft speed: its search when the block carries none, its variation "
+              "within a block.",
               {Number("search_lo_hz",
                       "Lower end of the mesh-frequency speed search, Hz (0: 0.8 x nominal).",
                       0.0, 10000.0, 0.0),
                Number("search_hi_hz",
                       "Upper end of the mesh-frequency speed search, Hz (0: 1.2 x nominal).",
-                      0.0, 10000.0, 0.0)}),
+                      0.0, 10000.0, 0.0),
+               Boolean("order_tracking",
+                       "Track the speed's variation within each block from its strongest mesh "
+                       "tone and average the shafts at the tracked angle (off: constant speed "
+                       "per block; off by default, docs/diagnosis.md).",
+                       false)}),
        Object("dominant_path", "How the dominant transfer path is chosen.",
               {Enum("criterion",
                     "sideband_energy: energy at mesh-harmonic sidebands; band_energy: energy in "

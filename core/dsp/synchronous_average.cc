@@ -8,6 +8,7 @@
 
 #include "core/dsp/cubic_interpolation.h"
 #include "core/dsp/input_checks.h"
+#include "core/dsp/order_tracker.h"
 
 namespace gearpath {
 namespace {
@@ -72,8 +73,13 @@ SynchronousAverageRecord SynchronousAverage::MakeRecord() const {
 }
 
 Status SynchronousAverage::Process(std::span<const double> signal, double shaft_hz,
-                                   SynchronousAverageRecord& out) noexcept {
+                                   SynchronousAverageRecord& out,
+                                   std::span<const double> warp) noexcept {
   if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
+  if (!warp.empty() && warp.size() != block_length_) {
+    return Error{std::string(kStage) + ": warp has " + std::to_string(warp.size()) +
+                 " values, need " + std::to_string(block_length_) + " (or none)"};
+  }
   if (!std::isfinite(shaft_hz) || shaft_hz <= 0.0) {
     return Error{std::string(kStage) + ": shaft_hz " + std::to_string(shaft_hz) +
                  " must be finite and positive"};
@@ -96,8 +102,21 @@ Status SynchronousAverage::Process(std::span<const double> signal, double shaft_
   }
   if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) return s;
 
-  const auto revolutions = static_cast<std::size_t>(whole);
   const std::size_t m_points = PointsPerRevolution(shaft_hz);
+  const double step = samples_per_revolution / static_cast<double>(m_points);
+  const double last = static_cast<double>(block_length_ - 1);
+  auto revolutions = static_cast<std::size_t>(whole);
+  if (!warp.empty()) {
+    // A slower-than-mean stretch can push the last revolution's end past the block.
+    while (revolutions > 0 &&
+           !(WarpAt(warp, static_cast<double>(revolutions * m_points - 1) * step) <= last)) {
+      --revolutions;
+    }
+    if (revolutions == 0) {
+      return Error{std::string(kStage) + ": the warp leaves no whole revolution of " +
+                   std::to_string(shaft_hz) + " Hz in the block"};
+    }
+  }
   const std::size_t half = m_points / 2;
   FftPlan& forward = forward_[PlanIndex(m_points)];
   FftPlan& inverse = inverse_[PlanIndex(m_points)];
@@ -105,12 +124,13 @@ Status SynchronousAverage::Process(std::span<const double> signal, double shaft_
   // Angular resampling and averaging, accumulated in the forward plan's input.
   std::span<double> average = forward.real_in();
   std::fill(average.begin(), average.end(), 0.0);
-  const double step = samples_per_revolution / static_cast<double>(m_points);
   const double* x = signal.data();
   std::size_t p = 0;
   for (std::size_t r = 0; r < revolutions; ++r) {
     for (std::size_t m = 0; m < m_points; ++m, ++p) {
-      average[m] += InterpolateCubic(x, block_length_, static_cast<double>(p) * step);
+      const double at = static_cast<double>(p) * step;
+      const double u = warp.empty() ? at : std::clamp(WarpAt(warp, at), 0.0, last);
+      average[m] += InterpolateCubic(x, block_length_, u);
     }
   }
   const double inv_r = 1.0 / static_cast<double>(revolutions);

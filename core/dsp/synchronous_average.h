@@ -32,8 +32,9 @@
 // 0.4 fs 33 %. Orders whose frequency is above ~0.15 fs are therefore under-read; the
 // anti-alias filter of most acquisition chains already attenuates the top of the band.
 //
-// Assumes the rate is constant over the block (speed drift smears the high orders first) and
-// that f is the true rate (an error of e in f moves order k by k e R over the block).
+// Without a warp, assumes the rate is constant over the block (speed drift smears the high
+// orders first; order_tracker.h measures the drift and Process() takes its warp) and that f is
+// the true rate (an error of e in f moves order k by k e R over the block).
 //
 // Process() is noexcept and allocation-free: the plans, buffers and outputs are made by
 // Create() / MakeRecord(). One SynchronousAverage serves any number of shafts (one record each);
@@ -89,11 +90,14 @@ class SynchronousAverage {
   SynchronousAverageRecord MakeRecord() const;
 
   // Averages `signal` (block_length samples) over the revolutions of a shaft at `shaft_hz`.
-  // Rejects a wrong length, non-finite samples, a rate that is not finite and positive, a block
-  // shorter than one revolution and a record not made for this stage's cap; `out` is then
-  // untouched. noexcept, no allocation on success.
-  Status Process(std::span<const double> signal, double shaft_hz,
-                 SynchronousAverageRecord& out) noexcept;
+  // `warp` (empty, or block_length increasing values from order_tracker.h) maps uniform angle to
+  // time: the point at nominal sample position s is read at WarpAt(warp, s), so a speed that
+  // moves within the block is averaged at true angle; revolutions whose last point the warp
+  // puts past the block are dropped. Rejects a wrong length, non-finite samples, a rate that is
+  // not finite and positive, a block shorter than one revolution and a record not made for this
+  // stage's cap; `out` is then untouched. noexcept, no allocation on success.
+  Status Process(std::span<const double> signal, double shaft_hz, SynchronousAverageRecord& out,
+                 std::span<const double> warp = {}) noexcept;
 
  private:
   SynchronousAverage() = default;

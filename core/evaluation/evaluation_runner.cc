@@ -119,6 +119,7 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   setup.frf_set = plant->model_frf;
   setup.train = *layout;
   setup.options.sample_rate_hz = options.sample_rate_hz;
+  setup.options.order_tracking = options.order_tracking;
   Result<BlockProcessor> processor = BlockProcessor::Create(std::move(setup));
   if (!processor) return Error{"block processor: " + processor.error()};
   if (Status st = processor->Prepare(options.block_length); !st) {

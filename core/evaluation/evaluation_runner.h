@@ -51,6 +51,7 @@ struct RunnerOptions {
   double sample_rate_hz = 8000.0;
   std::uint32_t block_length = 8192;
   double target_rms_change = 0.03;  // <= 0: keep the default severities
+  bool order_tracking = false;      // AnalysisOptions::order_tracking of every machine
 };
 
 // A verdict copied out of a BlockResult (which only holds views into its processor).

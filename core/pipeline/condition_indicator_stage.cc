@@ -16,6 +16,10 @@ namespace {
 
 // Distance (in orders of `other`) under which a line counts as a harmonic of another rate.
 constexpr double kCommonOrderTolerance = 0.1;
+// Order tracking is kept when the tracked average holds this much more power on the carrier
+// mesh's first harmonics than the constant-speed one (noise alone moves it by well under 1 %).
+constexpr double kTrackingGain = 1.02;
+constexpr int kCoherenceHarmonics = 4;
 
 }  // namespace
 
@@ -31,6 +35,15 @@ Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWo
   indicators_.emplace(std::move(ind.value()));
   record_ = tsa_->MakeRecord();
   signal_.assign(work.n, 0.0);
+  tracker_.reset();
+  warp_.clear();
+  if (machine.setup.options.order_tracking) {
+    // A block too short to track (under 64 samples) is averaged at constant speed.
+    if (auto tracker = OrderTracker::Create(work.n, fs); tracker) {
+      tracker_.emplace(std::move(tracker).value());
+      warp_.assign(work.n, 0.0);
+    }
+  }
 
   const int low_orders = indicators_->options().low_shaft_orders;
   exclusive_.assign(machine.rate_groups.size(), {});
@@ -108,6 +121,73 @@ void ConditionIndicatorStage::Signatures(StageContext& ctx) noexcept {
   }
 }
 
+bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  w.order_tracked = false;
+  w.order_track_shift = 0.0;
+  if (!tracker_ || w.meshes.empty()) return false;
+  // The band stays inside +/- 3/4 of the slowest shaft rate, so a fault's shaft-rate sidebands
+  // (its modulation) are not tracked as speed.
+  double slowest = w.meshes.front().shaft_hz[0];
+  for (const MeshLines& ml : w.meshes) {
+    slowest = std::min({slowest, ml.shaft_hz[0], ml.shaft_hz[1]});
+  }
+  const double half_band = 0.75 * slowest;
+  const double nyquist = 0.5 * ctx.machine.setup.options.sample_rate_hz;
+  // Carrier: the mesh fundamental with the most power in its band, on the channel where it
+  // is strongest.
+  double best_power = 0.0;
+  double carrier = 0.0;
+  double carrier_shaft = 0.0;
+  std::size_t channel = 0;
+  for (const MeshLines& ml : w.meshes) {
+    const double fc = ml.mesh_hz;
+    if (!(fc - half_band > 0.0) || !(fc + half_band < nyquist)) continue;
+    const auto lo = static_cast<std::size_t>(std::ceil((fc - half_band) / w.bin_hz));
+    const auto hi = std::min(w.bins - 1,
+                             static_cast<std::size_t>(std::floor((fc + half_band) / w.bin_hz)));
+    for (std::size_t c = 0; c < ctx.machine.channels; ++c) {
+      double power = 0.0;
+      for (std::size_t k = lo; k <= hi; ++k) power += std::norm(w.spec[c * w.bins + k]);
+      if (power > best_power) {
+        best_power = power;
+        carrier = fc;
+        carrier_shaft = ml.shaft_hz[0];
+        channel = c;
+      }
+    }
+  }
+  if (!(best_power > 0.0)) return false;
+  const auto tracked = tracker_->Track(std::span<const double>(w.time).subspan(channel * w.n, w.n),
+                                       carrier, half_band, warp_);
+  if (!tracked) return false;
+  // Keep the warp only when it makes the carrier's shaft average more coherent: another line
+  // inside the band (a shaft harmonic, a second mesh) beats with the carrier and would be
+  // tracked as a speed change that is not there.
+  const std::span<const double> reference =
+      std::span<const double>(w.time).subspan(channel * w.n, w.n);
+  const double constant = MeshCoherence(reference, carrier_shaft, carrier, {});
+  const double warped = MeshCoherence(reference, carrier_shaft, carrier, warp_);
+  if (!(warped > kTrackingGain * constant)) return false;
+  w.order_tracked = true;
+  w.order_track_shift = tracked->max_shift_samples;
+  return true;
+}
+
+double ConditionIndicatorStage::MeshCoherence(std::span<const double> signal, double shaft_hz,
+                                              double mesh_hz,
+                                              std::span<const double> warp) noexcept {
+  if (!tsa_->Process(signal, shaft_hz, record_, warp).ok()) return 0.0;
+  const auto orders = record_.orders();
+  const double teeth = std::round(mesh_hz / shaft_hz);
+  double power = 0.0;
+  for (int h = 1; h <= kCoherenceHarmonics; ++h) {
+    const double k = h * teeth;
+    if (k < static_cast<double>(orders.size())) power += std::norm(orders[static_cast<std::size_t>(k)]);
+  }
+  return power;
+}
+
 // The time signal of condition signal `signal` (a view of the block or of signal_).
 std::span<const double> ConditionIndicatorStage::SignalOf(const StageContext& ctx,
                                                           std::size_t signal) noexcept {
@@ -142,6 +222,8 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
   std::fill(w.signature_lines.begin(), w.signature_lines.end(), BlockWorkspace::Cd{});
   if (!(w.speed_hz > 0.0)) return RejectReason::kNone;
   const std::size_t groups = m.rate_groups.size();
+  const std::span<const double> warp =
+      TrackOrders(ctx) ? std::span<const double>(warp_) : std::span<const double>();
   for (std::size_t sig = 0; sig < m.condition_signals.size(); ++sig) {
     const std::span<const double> signal = SignalOf(ctx, sig);
     for (std::size_t g = 0; g < groups; ++g) {
@@ -150,7 +232,7 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
       const RateGroup& rg = m.rate_groups[g];
       const double shaft_hz = rg.ratio * w.speed_hz;
       w.slot_shaft_hz[slot] = shaft_hz;
-      if (!tsa_->Process(signal, shaft_hz, record_).ok()) continue;
+      if (!tsa_->Process(signal, shaft_hz, record_, warp).ok()) continue;
       const double na4_reference =
           st.residual_variance_healthy.blocks > 0 ? st.residual_variance_healthy.mean[slot] : 0.0;
       if (!indicators_->Compute(record_.tsa(), record_.orders(), rg.mesh_orders, na4_reference,

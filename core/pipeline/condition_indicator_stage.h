@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/diagnosis/gear_condition_indicators.h"
+#include "core/dsp/order_tracker.h"
 #include "core/dsp/synchronous_average.h"
 #include "core/pipeline/pipeline_stage.h"
 
@@ -29,8 +30,16 @@ class ConditionIndicatorStage final : public PipelineStage {
   std::span<const double> SignalOf(const StageContext& ctx, std::size_t signal) noexcept;
   void KeepSignatureLines(StageContext& ctx, std::size_t signal, std::size_t group) noexcept;
   void Signatures(StageContext& ctx) noexcept;
+  // Tracks this block's speed variation from its strongest mesh tone into warp_; false (and
+  // constant speed) when tracking is off, the block too short or the tone too weak.
+  bool TrackOrders(StageContext& ctx) noexcept;
+  // Power of the first mesh harmonics in `signal`'s average at `shaft_hz` (uses record_).
+  double MeshCoherence(std::span<const double> signal, double shaft_hz, double mesh_hz,
+                       std::span<const double> warp) noexcept;
 
   std::optional<SynchronousAverage> tsa_;
+  std::optional<OrderTracker> tracker_;
+  std::vector<double> warp_;  // n: uniform angle -> sample position (order_tracker.h)
   std::optional<GearConditionIndicators> indicators_;
   SynchronousAverageRecord record_;
   ConditionIndicatorValues values_;

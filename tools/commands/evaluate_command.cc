@@ -30,6 +30,7 @@ struct EvaluateArgs {
   int threads = 0;
   bool list = false;
   bool quiet = false;
+  bool order_tracking = false;
 };
 
 int RunEvaluate(const EvaluateArgs& args) {
@@ -80,8 +81,10 @@ int RunEvaluate(const EvaluateArgs& args) {
                scenarios.size(), args.matrix.c_str(), threads);
   const auto start = std::chrono::steady_clock::now();
   const bool quiet = args.quiet;
+  RunnerOptions runner;
+  runner.order_tracking = args.order_tracking;
   const std::vector<ScenarioOutcome> outcomes = RunScenarios(
-      scenarios, RunnerOptions{}, threads,
+      scenarios, runner, threads,
       [quiet, &start](std::size_t done, std::size_t total, const ScenarioOutcome& o) {
         if (!o.error.empty()) {
           std::fprintf(stderr, "  error in %s: %s\n", o.scenario.Key().c_str(), o.error.c_str());
@@ -142,6 +145,8 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--list", args->list, "list the selected scenarios and their seeds, run nothing");
   cmd->add_flag("--quiet", args->quiet, "no progress lines on stderr");
+  cmd->add_flag("--order-tracking", args->order_tracking,
+                "run the machines with analysis.speed.order_tracking on (default off)");
   cmd->callback([args, &exit_code] { exit_code = RunEvaluate(*args); });
 }
 

@@ -1,0 +1,238 @@
+#include "core/dsp/order_tracker.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include "core/dsp/cubic_interpolation.h"
+#include "core/dsp/input_checks.h"
+
+namespace gearpath {
+namespace {
+
+constexpr const char* kStage = "order tracker";
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr int kBasis = OrderTracker::kMaxDegree + 1;
+constexpr std::size_t kFloorBins = 64;
+using Normal = Eigen::Matrix<double, kBasis, kBasis>;
+using Vector = Eigen::Matrix<double, kBasis, 1>;
+
+// Legendre polynomials P_0..P_degree at x in [-1, 1] (well conditioned normal equations);
+// entries above `degree` are zero.
+Vector Legendre(double x, int degree) noexcept {
+  Vector p = Vector::Zero();
+  p(0) = 1.0;
+  if (degree >= 1) p(1) = x;
+  for (int k = 1; k < degree; ++k) {
+    p(k + 1) = ((2.0 * k + 1.0) * x * p(k) - k * p(k - 1)) / (k + 1.0);
+  }
+  return p;
+}
+
+std::string Hz(double v) { return std::to_string(v) + " Hz"; }
+
+}  // namespace
+
+double WarpAt(std::span<const double> warp, double u) noexcept {
+  const std::size_t n = warp.size();
+  if (n < 2) return u;
+  if (u <= 0.0) return warp[0] + u * (warp[1] - warp[0]);
+  const double last = static_cast<double>(n - 1);
+  if (u >= last) return warp[n - 1] + (u - last) * (warp[n - 1] - warp[n - 2]);
+  const auto i = static_cast<std::size_t>(u);
+  const double f = u - static_cast<double>(i);
+  return warp[i] + f * (warp[i + 1] - warp[i]);
+}
+
+Result<OrderTracker> OrderTracker::Create(std::size_t block_length, double sample_rate_hz,
+                                          OrderTrackerOptions options) {
+  const std::string what = std::string(kStage) + ": ";
+  if (block_length < 64) {
+    return Error{what + "block length " + std::to_string(block_length) +
+                 " is too short (need at least 64 samples)"};
+  }
+  if (!std::isfinite(sample_rate_hz) || sample_rate_hz <= 0.0) {
+    return Error{what + "sample rate " + std::to_string(sample_rate_hz) +
+                 " Hz must be finite and positive"};
+  }
+  if (options.iterations < 1 || options.iterations > 8) {
+    return Error{what + "iterations " + std::to_string(options.iterations) + " must be 1..8"};
+  }
+  if (options.degree < 1 || options.degree > kMaxDegree) {
+    return Error{what + "degree " + std::to_string(options.degree) + " must be 1.." +
+                 std::to_string(kMaxDegree)};
+  }
+  if (!(options.edge_fraction >= 0.0 && options.edge_fraction <= 0.3)) {
+    return Error{what + "edge fraction " + std::to_string(options.edge_fraction) +
+                 " must be in [0, 0.3]"};
+  }
+  if (!(options.min_carrier_to_floor >= 1.0)) {
+    return Error{what + "min carrier to floor ratio must be at least 1"};
+  }
+  if (!(options.max_phase_residual_rad > 0.0)) {
+    return Error{what + "max phase residual must be positive"};
+  }
+  OrderTracker t;
+  t.n_ = block_length;
+  t.fs_ = sample_rate_hz;
+  t.options_ = options;
+  Result<FftPlan> forward = FftPlan::Create(FftKind::kRealToComplex, block_length);
+  if (!forward) return Error{what + forward.error()};
+  Result<FftPlan> backward = FftPlan::Create(FftKind::kComplexBackward, block_length);
+  if (!backward) return Error{what + backward.error()};
+  t.forward_.emplace(std::move(forward).value());
+  t.backward_.emplace(std::move(backward).value());
+  t.phase_.assign(block_length, 0.0);
+  t.weight_.assign(block_length, 0.0);
+  t.next_.assign(block_length, 0.0);
+  return t;
+}
+
+Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, double carrier_hz,
+                                             double half_band_hz,
+                                             std::span<double> warp) noexcept {
+  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, n_); !s) return Error{s.error()};
+  if (warp.size() != n_) {
+    return Error{std::string(kStage) + ": warp has " + std::to_string(warp.size()) +
+                 " values, need " + std::to_string(n_)};
+  }
+  const double bin_hz = fs_ / static_cast<double>(n_);
+  if (!std::isfinite(carrier_hz) || !std::isfinite(half_band_hz) || half_band_hz <= 0.0 ||
+      carrier_hz - half_band_hz <= 0.0 || carrier_hz + half_band_hz >= 0.5 * fs_) {
+    return Error{std::string(kStage) + ": band " + Hz(carrier_hz) + " +/- " + Hz(half_band_hz) +
+                 " does not fit in (0, " + Hz(0.5 * fs_) + ")"};
+  }
+  const auto k_lo = static_cast<std::size_t>(std::ceil((carrier_hz - half_band_hz) / bin_hz));
+  const auto k_hi = static_cast<std::size_t>(std::floor((carrier_hz + half_band_hz) / bin_hz));
+  if (k_hi < k_lo + 2) {
+    return Error{std::string(kStage) + ": band +/- " + Hz(half_band_hz) + " holds " +
+                 std::to_string(k_hi + 1 - std::min(k_hi + 1, k_lo)) +
+                 " bins of " + Hz(bin_hz) + " (need at least 3: a longer block)"};
+  }
+  if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) return Error{s.error()};
+
+  const auto k_c = static_cast<std::size_t>(std::lround(carrier_hz / bin_hz));
+  // Phase slope left by demodulating at bin k_c instead of at the carrier (rad per sample).
+  const double offset_slope = kTwoPi * (carrier_hz - static_cast<double>(k_c) * bin_hz) / fs_;
+  const double samples_per_rad = fs_ / (kTwoPi * carrier_hz);
+  const auto edge = static_cast<std::size_t>(options_.edge_fraction * static_cast<double>(n_));
+  const double last = static_cast<double>(n_ - 1);
+  const int degree = options_.degree;
+
+  for (std::size_t i = 0; i < n_; ++i) warp[i] = static_cast<double>(i);
+  OrderTrackResult result;
+  for (int it = 0; it < options_.iterations; ++it) {
+    // 1. The signal at uniform angle (as far as the warp knows it).
+    std::span<double> y = forward_->real_in();
+    for (std::size_t i = 0; i < n_; ++i) {
+      y[i] = InterpolateCubic(signal.data(), n_, std::clamp(warp[i], 0.0, last));
+    }
+    forward_->Execute();
+    // 2. The carrier's complex envelope: its band shifted down by k_c bins.
+    const std::span<const std::complex<double>> bins = forward_->complex_out();
+    std::span<std::complex<double>> in = backward_->complex_in();
+    std::fill(in.begin(), in.end(), std::complex<double>{});
+    double band_power = 0.0;
+    for (std::size_t k = k_lo; k <= k_hi; ++k) {
+      const std::size_t shifted = k >= k_c ? k - k_c : n_ - (k_c - k);
+      in[shifted] = bins[k];
+      band_power += std::norm(bins[k]);
+    }
+    if (!(band_power > 0.0)) {
+      return Error{std::string(kStage) + ": no power within " + Hz(carrier_hz) + " +/- " +
+                   Hz(half_band_hz) + " (carrier absent)"};
+    }
+    if (it == 0) {
+      // The carrier must stand out of the floor beside its band (median power per bin of up
+      // to kFloorBins bins on each side): noise alone has a phase too, and a smooth one.
+      std::array<double, 2 * kFloorBins> floor{};
+      std::size_t count = 0;
+      const std::size_t width = k_hi - k_lo + 1;
+      for (std::size_t j = 1; j <= std::min(kFloorBins, 3 * width); ++j) {
+        if (k_lo > j) floor[count++] = std::norm(bins[k_lo - j]);
+        if (k_hi + j < n_ / 2) floor[count++] = std::norm(bins[k_hi + j]);
+      }
+      if (count > 0) {
+        const auto mid = floor.begin() + static_cast<std::ptrdiff_t>(count / 2);
+        std::nth_element(floor.begin(), mid, floor.begin() + static_cast<std::ptrdiff_t>(count));
+        const double per_bin = band_power / static_cast<double>(width);
+        if (!(per_bin > options_.min_carrier_to_floor * *mid)) {
+          return Error{std::string(kStage) + ": no carrier within " + Hz(carrier_hz) + " +/- " +
+                       Hz(half_band_hz) + " (band power per bin " +
+                       std::to_string(*mid > 0.0 ? per_bin / *mid : 0.0) +
+                       " x the floor beside it, need " +
+                       std::to_string(options_.min_carrier_to_floor) + ": carrier absent)"};
+        }
+      }
+    }
+    backward_->Execute();
+    // 3. Unwrapped phase error and its weight (envelope power, edges left out).
+    const std::span<const std::complex<double>> z = backward_->complex_out();
+    double previous = std::arg(z[0]);
+    double unwrapped = previous;
+    for (std::size_t i = 0; i < n_; ++i) {
+      const double a = std::arg(z[i]);
+      double d = a - previous;
+      d -= kTwoPi * std::round(d / kTwoPi);
+      unwrapped += i == 0 ? 0.0 : d;
+      previous = a;
+      phase_[i] = unwrapped - offset_slope * static_cast<double>(i);
+      weight_[i] = (i < edge || i + edge >= n_) ? 0.0 : std::norm(z[i]);
+    }
+    // 4. Weighted least-squares Legendre fit.
+    Normal normal = Normal::Zero();
+    Vector rhs = Vector::Zero();
+    double weight_sum = 0.0;
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (weight_[i] == 0.0) continue;
+      const Vector p = Legendre(2.0 * static_cast<double>(i) / last - 1.0, degree);
+      normal.selfadjointView<Eigen::Lower>().rankUpdate(p, weight_[i]);
+      rhs += weight_[i] * phase_[i] * p;
+      weight_sum += weight_[i];
+    }
+    if (!(weight_sum > 0.0)) {
+      return Error{std::string(kStage) + ": the carrier's envelope is zero inside the block"};
+    }
+    for (int k = degree + 1; k < kBasis; ++k) normal(k, k) = 1.0;
+    normal = normal.selfadjointView<Eigen::Lower>();
+    const Vector coef = normal.ldlt().solve(rhs);
+    double residual = 0.0;
+    for (std::size_t i = 0; i < n_; ++i) {
+      const double fit = coef.dot(Legendre(2.0 * static_cast<double>(i) / last - 1.0, degree));
+      if (weight_[i] != 0.0) residual += weight_[i] * (phase_[i] - fit) * (phase_[i] - fit);
+      phase_[i] = fit;
+    }
+    result.phase_residual_rad = std::sqrt(residual / weight_sum);
+    if (!std::isfinite(result.phase_residual_rad) ||
+        result.phase_residual_rad > options_.max_phase_residual_rad) {
+      return Error{std::string(kStage) + ": the carrier at " + Hz(carrier_hz) +
+                   " is too noisy to track (phase residual " +
+                   std::to_string(result.phase_residual_rad) + " rad, limit " +
+                   std::to_string(options_.max_phase_residual_rad) + ")"};
+    }
+    // 5. Move the warp by the angle error (angle zero stays at sample 0).
+    const double origin = phase_[0];
+    for (std::size_t i = 0; i < n_; ++i) {
+      next_[i] = WarpAt(warp, static_cast<double>(i) - (phase_[i] - origin) * samples_per_rad);
+    }
+    for (std::size_t i = 1; i < n_; ++i) {
+      if (!(next_[i] > next_[i - 1])) {
+        return Error{std::string(kStage) + ": the tracked angle of " + Hz(carrier_hz) +
+                     " does not increase at sample " + std::to_string(i)};
+      }
+    }
+    std::copy(next_.begin(), next_.end(), warp.begin());
+  }
+  for (std::size_t i = 0; i < n_; ++i) {
+    result.max_shift_samples =
+        std::max(result.max_shift_samples, std::abs(warp[i] - static_cast<double>(i)));
+  }
+  result.mean_speed_ratio = last / warp[n_ - 1];
+  return result;
+}
+
+}  // namespace gearpath
