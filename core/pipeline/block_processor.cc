@@ -178,6 +178,7 @@ void BlockProcessor::Impl::ResetLearning() noexcept {
   state.residual_variance_healthy.Reset();
   state.criterion_healthy.Reset();
   std::fill(state.group_excess_sum.begin(), state.group_excess_sum.end(), 0.0);
+  state.order_tracking_mode = -1;
 }
 
 BlockProcessor::BlockProcessor(std::unique_ptr<Impl> impl) noexcept : impl_(std::move(impl)) {}
@@ -327,6 +328,7 @@ LearnedState BlockProcessor::ExportLearnedState() const {
   s.criterion_blocks = st.criterion_healthy.blocks;
   s.alarm = st.alarm->State();
   s.group_excess_sum = st.group_excess_sum;
+  s.order_tracking_mode = st.order_tracking_mode;
   return s;
 }
 
@@ -399,6 +401,7 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
   st.criterion_healthy.mean = s.criterion_healthy;
   st.criterion_healthy.blocks = s.criterion_blocks;
   st.group_excess_sum = s.group_excess_sum;
+  st.order_tracking_mode = s.order_tracking_mode;
   return Status::Ok();
 }
 

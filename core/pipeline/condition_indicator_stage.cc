@@ -16,8 +16,9 @@ namespace {
 
 // Distance (in orders of `other`) under which a line counts as a harmonic of another rate.
 constexpr double kCommonOrderTolerance = 0.1;
-// Order tracking is kept when the tracked average holds this much more power on the carrier
-// mesh's first harmonics than the constant-speed one (noise alone moves it by well under 1 %).
+// A machine is order-tracked when, on its first block, the tracked average holds this much more
+// power on the carrier mesh's first harmonics than the constant-speed one (noise alone moves it
+// by well under 1 %).
 constexpr double kTrackingGain = 1.02;
 constexpr int kCoherenceHarmonics = 4;
 
@@ -123,9 +124,10 @@ void ConditionIndicatorStage::Signatures(StageContext& ctx) noexcept {
 
 bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
   BlockWorkspace& w = ctx.work;
+  int& mode = ctx.state.order_tracking_mode;
   w.order_tracked = false;
   w.order_track_shift = 0.0;
-  if (!tracker_ || w.meshes.empty()) return false;
+  if (!tracker_ || w.meshes.empty() || mode == 0) return false;
   // The band stays inside +/- 3/4 of the slowest shaft rate, so a fault's shaft-rate sidebands
   // (its modulation) are not tracked as speed.
   double slowest = w.meshes.front().shaft_hz[0];
@@ -157,18 +159,27 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
       }
     }
   }
-  if (!(best_power > 0.0)) return false;
-  const auto tracked = tracker_->Track(std::span<const double>(w.time).subspan(channel * w.n, w.n),
-                                       carrier, half_band, warp_);
+  const auto tracked = best_power > 0.0
+                           ? tracker_->Track(std::span<const double>(w.time).subspan(
+                                                 channel * w.n, w.n),
+                                             carrier, half_band, warp_)
+                           : Result<OrderTrackResult>(Error{"no mesh tone in range"});
+  if (mode == -1) {
+    // The machine's one decision: track only when it makes the carrier's shaft average more
+    // coherent. Another line inside the band (a shaft harmonic, a second mesh) beats with the
+    // carrier and would be tracked as a speed change that is not there.
+    mode = 0;
+    if (tracked) {
+      const std::span<const double> reference =
+          std::span<const double>(w.time).subspan(channel * w.n, w.n);
+      const double constant = MeshCoherence(reference, carrier_shaft, carrier, {});
+      const double warped = MeshCoherence(reference, carrier_shaft, carrier, warp_);
+      if (warped > kTrackingGain * constant) mode = 1;
+    }
+    if (mode == 0) return false;
+  }
+  // A tracking machine whose block cannot be tracked (a weak tone) is averaged at its mean speed.
   if (!tracked) return false;
-  // Keep the warp only when it makes the carrier's shaft average more coherent: another line
-  // inside the band (a shaft harmonic, a second mesh) beats with the carrier and would be
-  // tracked as a speed change that is not there.
-  const std::span<const double> reference =
-      std::span<const double>(w.time).subspan(channel * w.n, w.n);
-  const double constant = MeshCoherence(reference, carrier_shaft, carrier, {});
-  const double warped = MeshCoherence(reference, carrier_shaft, carrier, warp_);
-  if (!(warped > kTrackingGain * constant)) return false;
   w.order_tracked = true;
   w.order_track_shift = tracked->max_shift_samples;
   return true;

@@ -31,7 +31,9 @@ class ConditionIndicatorStage final : public PipelineStage {
   void KeepSignatureLines(StageContext& ctx, std::size_t signal, std::size_t group) noexcept;
   void Signatures(StageContext& ctx) noexcept;
   // Tracks this block's speed variation from its strongest mesh tone into warp_; false (and
-  // constant speed) when tracking is off, the block too short or the tone too weak.
+  // constant speed) when tracking is off, the block too short or the tone too weak. The
+  // machine's first block with a speed decides, once, whether it is tracked at all
+  // (MachineState::order_tracking_mode): a baseline must be averaged like the blocks it judges.
   bool TrackOrders(StageContext& ctx) noexcept;
   // Power of the first mesh harmonics in `signal`'s average at `shaft_hz` (uses record_).
   double MeshCoherence(std::span<const double> signal, double shaft_hz, double mesh_hz,

@@ -33,6 +33,7 @@ struct LearnedState {
   int criterion_blocks = 0;
   AlarmModelState alarm;
   std::vector<double> group_excess_sum;           // per rate group (localisation evidence)
+  int order_tracking_mode = -1;                   // MachineState::order_tracking_mode
 };
 
 // FNV-1a over everything that shapes the indicator vector and its values (header comment).

@@ -93,6 +93,7 @@ json ToJson(const LearnedState& s) {
                 {"blocks_in_state", a.blocks_in_state},
                 {"votes", a.votes}};
   j["group_excess_sum"] = s.group_excess_sum;
+  j["order_tracking_mode"] = s.order_tracking_mode;
   return j;
 }
 
@@ -151,6 +152,13 @@ Result<LearnedState> LearnedStateFromJson(const json& j) {
     s.alarm.blocks_in_state = Int(a, "blocks_in_state");
     s.alarm.votes = Ints(a, "votes");
     s.group_excess_sum = j.at("group_excess_sum").get<std::vector<double>>();
+    // Absent in states written before order tracking existed: those machines averaged at
+    // constant speed.
+    s.order_tracking_mode = j.contains("order_tracking_mode") ? Int(j, "order_tracking_mode") : 0;
+    if (s.order_tracking_mode < -1 || s.order_tracking_mode > 1) {
+      return Error{"learned state: order_tracking_mode: " + std::to_string(s.order_tracking_mode) +
+                   " is not -1, 0 or 1"};
+    }
     return s;
   } catch (const std::exception& e) {
     // nlohmann names the missing key or the type it found ("type must be number, but is

@@ -43,6 +43,10 @@ struct MachineState {
   // Shaft evidence accumulated over recent exceeding blocks, per rate group
   // (localisation_stage.h).
   std::vector<double> group_excess_sum;
+  // Order tracking for this machine (AnalysisOptions::order_tracking): -1 undecided, 0 constant
+  // speed, 1 tracked. Decided once, on the first block with a speed, and kept, so the
+  // baseline and every later block are averaged the same way (condition_indicator_stage.h).
+  int order_tracking_mode = -1;
   bool learning = true;                              // indicator_baseline is incomplete
 };
 
