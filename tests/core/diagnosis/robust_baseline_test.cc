@@ -3,10 +3,10 @@
 // allocation-free per-block calls and state round trip.
 //
 // This file also holds test_diagnosis' counting replacement of the global allocation
-// functions (alarm_model_test.cc uses the same counter through the declarations in the
-// diagnosis_alloc namespace). They are weak so that another test file of this executable that
-// replaces operator new does not break the link; the counter checks it is the one in use
-// (AllocationCounterSeesAnAllocation) so the allocation tests cannot pass vacuously.
+// functions (tests/core/counting_operator_new.h, included once per executable; alarm_model_test.cc
+// uses the same counter through the declarations in the diagnosis_alloc namespace). The counter
+// checks it is the one in use (AllocationCounterSeesAnAllocation) so the allocation tests cannot
+// pass vacuously.
 #include "core/diagnosis/robust_baseline.h"
 
 #include <gtest/gtest.h>
@@ -21,18 +21,16 @@
 #include <utility>
 #include <vector>
 
+#include "tests/core/counting_operator_new.h"
+
 namespace diagnosis_alloc {
 bool counting = false;
 long allocations = 0;
 }  // namespace diagnosis_alloc
 
-[[gnu::weak]] void* operator new(std::size_t size) {
+void counting_new::OnAllocation() noexcept {
   if (diagnosis_alloc::counting) ++diagnosis_alloc::allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
 }
-[[gnu::weak]] void operator delete(void* p) noexcept { std::free(p); }
-[[gnu::weak]] void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace gearpath {
 namespace {

@@ -1,6 +1,7 @@
 // The per-block process steps of core/dsp allocate nothing once configured (DESIGN.md: hot
 // paths allocate nothing). Checked by counting global operator new calls while they run; the
-// replacement operators below are this test executable's, and count only inside a scope.
+// replacement operators (tests/core/counting_operator_new.h) are included here, once for this
+// test executable, and count only inside a scope.
 #include <gtest/gtest.h>
 
 #include <complex>
@@ -14,6 +15,7 @@
 #include "core/dsp/harmonic_indicator.h"
 #include "core/dsp/kurtogram.h"
 #include "core/dsp/spectrum.h"
+#include "tests/core/counting_operator_new.h"
 #include "tests/core/dsp/test_signals.h"
 
 namespace {
@@ -21,13 +23,9 @@ thread_local bool counting = false;
 thread_local int allocations = 0;
 }  // namespace
 
-void* operator new(std::size_t size) {
+void counting_new::OnAllocation() noexcept {
   if (counting) ++allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
 }
-// operator new[] and the nothrow forms call this one by default; libstdc++'s operator delete
-// frees with std::free, which matches std::malloc, so delete needs no replacement.
 
 namespace gearpath {
 namespace {

@@ -14,18 +14,16 @@
 #include <vector>
 
 #include "core/diagnosis/train_layout.h"
+#include "tests/core/counting_operator_new.h"
 #include "tests/core/pipeline/simulated_machine.h"
 
 // Counting allocator: proves Process() allocates nothing once the block shape is configured.
 namespace {
 std::atomic<long> g_allocations{0};
 }  // namespace
-void* operator new(std::size_t size) {
+void counting_new::OnAllocation() noexcept {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
 }
-// libstdc++'s operator delete frees with std::free, which matches std::malloc.
 
 namespace gearpath {
 namespace {
