@@ -6,7 +6,6 @@
 #include <cmath>
 #include <complex>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -81,7 +80,7 @@ FrfSet MakeSet(bool decoupled, bool coupled) {
 
 bool SameBits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return a.size() == b.size() &&
-         std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0;
+         SameBytes(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double));
 }
 
 void ExpectSameBlocks(const std::vector<Eigen::MatrixXcd>& a,
@@ -90,9 +89,8 @@ void ExpectSameBlocks(const std::vector<Eigen::MatrixXcd>& a,
   for (std::size_t k = 0; k < a.size(); ++k) {
     ASSERT_EQ(a[k].rows(), b[k].rows()) << what;
     ASSERT_EQ(a[k].cols(), b[k].cols()) << what;
-    EXPECT_EQ(std::memcmp(a[k].data(), b[k].data(),
-                          static_cast<std::size_t>(a[k].size()) * sizeof(Complex)),
-              0)
+    EXPECT_TRUE(SameBytes(a[k].data(), b[k].data(),
+                          static_cast<std::size_t>(a[k].size()) * sizeof(Complex)))
         << what << " differs at bin " << k;
   }
 }

@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <complex>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -64,7 +63,7 @@ void ExpectRoundTrip(const fs::path& file, const std::vector<T>& values,
   ASSERT_TRUE(read.ok()) << read.error();
   EXPECT_EQ(read->shape, shape);
   ASSERT_EQ(read->data.size(), values.size());
-  EXPECT_EQ(std::memcmp(read->data.data(), values.data(), values.size() * sizeof(T)), 0);
+  EXPECT_TRUE(SameBytes(read->data.data(), values.data(), values.size() * sizeof(T)));
 }
 
 TEST_F(NpyTest, RoundTripsEveryDtypeBitForBit) {

@@ -5,7 +5,6 @@
 
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <nlohmann/json.hpp>
 
@@ -73,7 +72,7 @@ TEST_F(RecordingTest, RoundTripsEveryBlockBitForBit) {
     EXPECT_EQ(out->blocks[i].speed_source, in.blocks[i].speed_source);
   }
   ASSERT_EQ(out->samples.size(), in.samples.size());
-  EXPECT_EQ(std::memcmp(out->samples.data(), in.samples.data(), in.samples.size() * 4), 0);
+  EXPECT_TRUE(SameBytes(out->samples.data(), in.samples.data(), in.samples.size() * 4));
 }
 
 TEST_F(RecordingTest, BlockViewIsThePlanarSliceOfItsBlock) {
@@ -95,8 +94,8 @@ TEST_F(RecordingTest, SamplesFileIsAStandardNpyArrayOfBlocksChannelsSamples) {
   EXPECT_EQ(header->data_offset % 64, 0u);
   const std::string bytes = ReadFileBytes(dir_ / "samples.npy");
   ASSERT_EQ(bytes.size(), header->data_offset + in.samples.size() * 4);
-  EXPECT_EQ(
-      std::memcmp(bytes.data() + header->data_offset, in.samples.data(), in.samples.size() * 4), 0);
+  EXPECT_TRUE(
+      SameBytes(bytes.data() + header->data_offset, in.samples.data(), in.samples.size() * 4));
 }
 
 TEST_F(RecordingTest, StreamingWriterRefusesABlockOfAnotherLayout) {
@@ -161,8 +160,8 @@ TEST_F(RecordingTest, RejectsAManifestWithAnOverflowingNumberOrDeepNesting) {
   EXPECT_TRUE(Contains(r.error(), "number overflow parsing '1e999'"));
   EXPECT_FALSE(IsRecordingDirectory(dir_));
 
-  WriteFileBytes(dir_ / "manifest.json", "{\"format\": \"gearpath-recording\", \"x\": " +
-                                             std::string(100'000, '[') + "}");
+  WriteFileBytes(dir_ / "manifest.json",
+                 "{\"format\": \"gearpath-recording\", \"x\": " + std::string(100'000, '[') + "}");
   r = ReadRecording(dir_);
   ASSERT_FALSE(r.ok());
   EXPECT_TRUE(Contains(r.error(), "nested deeper than 64 levels"));
