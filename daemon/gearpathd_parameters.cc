@@ -322,6 +322,11 @@ ParamSpec AnalysisSection() {
                       "Relative floor of every indicator's healthy spread (0.05: a change under "
                       "5 % of its level never counts as large).",
                       0.0, 1.0, 0.05),
+               Boolean("tail_guard",
+                       "Widen each indicator's healthy spread so that the worst baseline block "
+                       "scores at most clear_level x the limit (indicators that are heavy-tailed "
+                       "when healthy, e.g. high moments under broadband bursts).",
+                       true),
                Number("k_sigma",
                       "Published envelope-indicator thresholds = mean + k_sigma x standard "
                       "deviation.",

@@ -163,9 +163,14 @@ Result<RobustBaseline> RobustBaseline::Create(std::size_t indicators,
                  std::to_string(indicators) + "), got " +
                  std::to_string(options.log_transform.size())};
   }
+  if (!(options.tail_z >= 0.0) || !std::isfinite(options.tail_z)) {
+    return Error{"robust baseline: tail_z must be finite and >= 0 (0 = off), got " +
+                 std::to_string(options.tail_z)};
+  }
   RobustBaseline b;
   b.indicators_ = indicators;
   b.blocks_ = options.blocks;
+  b.tail_z_ = options.tail_z;
   b.relative_floor_ = options.relative_floor;
   b.absolute_floor_ = options.absolute_floor;
   b.log_value_floor_ = options.log_value_floor;
@@ -297,12 +302,17 @@ void RobustBaseline::Finalise() noexcept {
   for (std::size_t i = 0; i < indicators_; ++i) {
     for (std::size_t b = 0; b < n; ++b) scratch_[b] = Transform(i, samples_[b * indicators_ + i]);
     const double median = MedianInPlace(scratch_);
-    for (double& v : scratch_) v = std::fabs(v - median);
+    double largest = 0.0;
+    for (double& v : scratch_) {
+      v = std::fabs(v - median);
+      largest = std::max(largest, v);
+    }
     const double mad = MedianInPlace(scratch_);
+    const double tail = tail_z_ > 0.0 ? largest / tail_z_ : 0.0;
     const double relative = log_[i] != 0 ? std::log1p(relative_floor_)  // x (1 + r) on log scale
                                          : relative_floor_ * std::fabs(median);
     median_[i] = median;
-    scale_[i] = std::max({kMadToSigma * mad, relative, absolute_floor_});
+    scale_[i] = std::max({kMadToSigma * mad, relative, absolute_floor_, tail});
   }
 }
 

@@ -64,6 +64,13 @@ struct RobustBaselineOptions {
   double log_value_floor = 1e-300;  // log indicators take log(max(x, this)) (> 0)
   // Per indicator: judge on log(x). Empty = no indicator on a log scale; else size K.
   std::vector<bool> log_transform;
+  // Tail guard (0 = off): the scale is also at least max_b |y_b - m| / tail_z over the N
+  // baseline blocks, so no healthy baseline block would have scored above tail_z. The MAD
+  // ignores a minority of outlying blocks, which is right for the location and wrong for the
+  // tail of an indicator that is heavy-tailed when healthy (a 6th or 8th moment in a plant
+  // with broadband bursts); Gaussian indicators are untouched (their largest of N = 20
+  // deviations is about 2 sigma).
+  double tail_z = 0.0;
 };
 
 // Everything needed to resume a baseline after a restart (written to disk elsewhere).
@@ -122,6 +129,11 @@ class RobustBaseline {
 
   void Reset() noexcept;  // forgets everything learned and learns again from the next block
 
+  // The tail guard (RobustBaselineOptions::tail_z) for a baseline resumed with FromState()
+  // (it applies when learning completes; 0 = off).
+  void set_tail_z(double tail_z) noexcept { tail_z_ = tail_z > 0.0 ? tail_z : 0.0; }
+  double tail_z() const noexcept { return tail_z_; }
+
  private:
   RobustBaseline() = default;
   double Transform(std::size_t i, double x) const noexcept;
@@ -134,6 +146,7 @@ class RobustBaseline {
   double relative_floor_ = 0.0;
   double absolute_floor_ = 0.0;
   double log_value_floor_ = 0.0;
+  double tail_z_ = 0.0;
   std::vector<unsigned char> log_;  // per indicator, 0/1
   std::vector<double> samples_;     // N x K, block-major
   std::vector<double> scratch_;     // N

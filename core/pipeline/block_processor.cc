@@ -82,9 +82,6 @@ Status InitialiseState(const MachineContext& m, MachineState& st) {
   bo.blocks = o.baseline_blocks;
   bo.relative_floor = o.scale_floor;
   bo.log_transform.assign(m.indicator_count, true);  // every indicator is a positive ratio
-  auto baseline = RobustBaseline::Create(m.indicator_count, bo);
-  if (!baseline) return Error{at + "options.baseline: " + baseline.error()};
-  st.indicator_baseline.emplace(std::move(baseline.value()));
   st.limit_z = RobustBaseline::ZForFalseAlarmRate(
       o.false_alarm_rate, static_cast<int>(m.scored_indicator_count), o.baseline_blocks);
   if (!(st.limit_z > 0.0)) {
@@ -92,6 +89,10 @@ Status InitialiseState(const MachineContext& m, MachineState& st) {
                                   "< 1 and baseline_blocks >= 3)",
                                   o.false_alarm_rate)};
   }
+  bo.tail_z = o.tail_guard ? o.clear_level * st.limit_z : 0.0;
+  auto baseline = RobustBaseline::Create(m.indicator_count, bo);
+  if (!baseline) return Error{at + "options.baseline: " + baseline.error()};
+  st.indicator_baseline.emplace(std::move(baseline.value()));
   AlarmOptions ao;
   ao.n = o.alarm_window;
   ao.suspect_k = o.suspect_k;
@@ -358,6 +359,8 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
   }
   auto indicator = RobustBaseline::FromState(s.indicator_baseline);
   if (!indicator) return Error{indicator.error()};
+  // Configuration, not state (the fingerprint vouches that it is the one it learned under).
+  indicator->set_tail_z(now.indicator_baseline->tail_z());
   std::optional<HealthyBaseline> envelope;
   if (s.envelope_baseline) {
     auto e = HealthyBaseline::FromState(*s.envelope_baseline);

@@ -100,6 +100,7 @@ std::uint64_t LearnedStateFingerprint(const MachineContext& m) {
   h.Number(o.baseline_blocks);
   h.Number(o.baseline_k_sigma);
   h.Number(o.scale_floor);
+  h.Number(o.tail_guard ? 1 : 0);
   return h.value();
 }
 
