@@ -9,7 +9,22 @@
 
 namespace gearpath {
 
-Status PathEnergyStage::Configure(const MachineContext&, BlockWorkspace&) { return Status::Ok(); }
+Status PathEnergyStage::Configure(const MachineContext& m, BlockWorkspace& w) {
+  const auto bins = static_cast<std::size_t>(w.map.frf.bins());
+  frf_power_.assign(m.paths * m.channels * bins, 0.0F);
+  for (std::size_t p = 0; p < m.paths; ++p) {
+    for (std::size_t c = 0; c < m.channels; ++c) {
+      float* row = frf_power_.data() + (p * m.channels + c) * bins;
+      for (std::size_t i = 0; i < bins; ++i) {
+        row[i] = static_cast<float>(std::norm(
+            w.map.frf.at[i](static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(p))));
+      }
+    }
+  }
+  band_force_.assign(bins, 0.0);
+  sideband_force_.assign(bins, 0.0);
+  return Status::Ok();
+}
 
 RejectReason PathEnergyStage::Process(StageContext& ctx) noexcept {
   BlockWorkspace& w = ctx.work;
@@ -23,24 +38,28 @@ RejectReason PathEnergyStage::Process(StageContext& ctx) noexcept {
     std::fill(w.sideband_mask.begin(), w.sideband_mask.end(), std::uint8_t{0});
     std::fill(w.mesh_mask.begin(), w.mesh_mask.end(), std::uint8_t{0});
   }
-  const Eigen::Index in_range = w.map.frf.bins();
+  const auto bins = static_cast<std::size_t>(w.map.frf.bins());
   for (std::size_t p = 0; p < m.paths; ++p) {
     const auto pi = static_cast<Eigen::Index>(p);
+    for (std::size_t i = 0; i < bins; ++i) {
+      const std::size_t k = w.map.first_bin + i;
+      const double f2 = w.band_mask[k] ? std::norm(w.forces(pi, static_cast<Eigen::Index>(i))) : 0.0;
+      band_force_[i] = f2;
+      sideband_force_[i] = w.sideband_mask[k] ? f2 : 0.0;
+    }
     double band = 0.0;
     double side = 0.0;
     double best_e = -1.0;
     int best = 0;
     for (std::size_t c = 0; c < m.channels; ++c) {
-      const auto ci = static_cast<Eigen::Index>(c);
+      const float* power = frf_power_.data() + (p * m.channels + c) * bins;
       double channel_energy = 0.0;
-      for (Eigen::Index i = 0; i < in_range; ++i) {
-        const std::size_t k = w.map.first_bin + static_cast<std::size_t>(i);
-        if (!w.band_mask[k]) continue;
-        const std::complex<double> f = w.forces(pi, i);
-        const double e = std::norm(w.map.frf.at[static_cast<std::size_t>(i)](ci, pi) * f);
-        channel_energy += e;
-        if (w.sideband_mask[k]) side += e;
+      double channel_side = 0.0;
+      for (std::size_t i = 0; i < bins; ++i) {
+        channel_energy += static_cast<double>(power[i]) * band_force_[i];
+        channel_side += static_cast<double>(power[i]) * sideband_force_[i];
       }
+      side += channel_side;
       band += channel_energy;
       if (channel_energy > best_e) {
         best_e = channel_energy;
