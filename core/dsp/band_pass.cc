@@ -25,13 +25,8 @@ double RollOff(double distance, double width) noexcept {
 Result<BandPass> BandPass::Create(std::size_t block_length, double sample_rate_hz,
                                   double transition_hz) {
   const std::string stage = kStage;
-  if (block_length < 2) {
-    return Error{stage + ": block length " + std::to_string(block_length) +
-                 " is too short (need at least 2 samples)"};
-  }
-  if (!std::isfinite(sample_rate_hz) || sample_rate_hz <= 0.0) {
-    return Error{stage + ": sample rate " + std::to_string(sample_rate_hz) +
-                 " Hz must be finite and positive"};
+  if (Status s = dsp_detail::CheckBlockShape(kStage, block_length, 2, sample_rate_hz); !s) {
+    return Error{s.error()};
   }
   if (!std::isfinite(transition_hz) || transition_hz < 0.0) {
     return Error{stage + ": transition_hz " + std::to_string(transition_hz) +

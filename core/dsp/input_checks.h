@@ -27,6 +27,20 @@ inline std::size_t FirstNonFinite(std::span<const std::complex<double>> values) 
   return values.size();
 }
 
+// The shape a stage is created for: at least `min_length` samples, at a finite positive rate.
+inline Status CheckBlockShape(const char* stage, std::size_t block_length, std::size_t min_length,
+                              double sample_rate_hz) {
+  if (block_length < min_length) {
+    return Error{std::string(stage) + ": block length " + std::to_string(block_length) +
+                 " is too short (need at least " + std::to_string(min_length) + " samples)"};
+  }
+  if (!std::isfinite(sample_rate_hz) || sample_rate_hz <= 0.0) {
+    return Error{std::string(stage) + ": sample rate " + std::to_string(sample_rate_hz) +
+                 " Hz must be finite and positive"};
+  }
+  return Status::Ok();
+}
+
 // Checks that `what` holds `expected` values. Allocates a message only on failure.
 template <typename T>
 Status CheckLength(const char* stage, const char* what, std::span<T> values,

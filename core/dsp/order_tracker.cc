@@ -51,13 +51,8 @@ double WarpAt(std::span<const double> warp, double u) noexcept {
 Result<OrderTracker> OrderTracker::Create(std::size_t block_length, double sample_rate_hz,
                                           OrderTrackerOptions options) {
   const std::string what = std::string(kStage) + ": ";
-  if (block_length < 64) {
-    return Error{what + "block length " + std::to_string(block_length) +
-                 " is too short (need at least 64 samples)"};
-  }
-  if (!std::isfinite(sample_rate_hz) || sample_rate_hz <= 0.0) {
-    return Error{what + "sample rate " + std::to_string(sample_rate_hz) +
-                 " Hz must be finite and positive"};
+  if (Status s = dsp_detail::CheckBlockShape(kStage, block_length, 64, sample_rate_hz); !s) {
+    return Error{s.error()};
   }
   if (options.iterations < 1 || options.iterations > 8) {
     return Error{what + "iterations " + std::to_string(options.iterations) + " must be 1..8"};

@@ -28,13 +28,9 @@ Result<SynchronousAverage> SynchronousAverage::Create(std::size_t block_length,
                                                       double sample_rate_hz,
                                                       std::size_t max_points_per_revolution) {
   const std::string what = std::string(kStage) + ": ";
-  if (block_length < 4) {
-    return Error{what + "block length " + std::to_string(block_length) +
-                 " is too short (need at least 4 samples for the cubic interpolator)"};
-  }
-  if (!std::isfinite(sample_rate_hz) || sample_rate_hz <= 0.0) {
-    return Error{what + "sample rate " + std::to_string(sample_rate_hz) +
-                 " Hz must be finite and positive"};
+  // Four samples: the cubic interpolator's stencil.
+  if (Status s = dsp_detail::CheckBlockShape(kStage, block_length, 4, sample_rate_hz); !s) {
+    return Error{s.error()};
   }
   if (max_points_per_revolution < kMinPoints || max_points_per_revolution > kMaxPoints ||
       !std::has_single_bit(max_points_per_revolution)) {
