@@ -66,8 +66,9 @@ void FormatRow(std::string& out, const AggregateRow& r) {
       r.first_alarm_count > 0 ? fmt::format("{:.2f}", r.mean_first_alarm()) : "-";
   const std::string flips = r.scored > 0 ? fmt::format("{:.2f}", r.mean_flips()) : "-";
   const std::string learning = r.blocks > 0 ? Percent(r.learning_rate()) : "-";
-  out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7}", r.label, r.faulty,
-                     r.healthy, detect, right, fa, first, flips, learning);
+  const std::string reversals = r.scored > 0 ? fmt::format("{}", r.max_reversals) : "-";
+  out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7} {:>5}", r.label,
+                     r.faulty, r.healthy, detect, right, fa, first, flips, learning, reversals);
   if (r.errors > 0) out += fmt::format("  ({} errors)", r.errors);
   out += "\n";
 }
@@ -85,6 +86,8 @@ nlohmann::json RowJson(const AggregateRow& r) {
           {"false_alarm_rate_per_block", r.false_alarm_rate()},
           {"mean_first_alarm_block", r.mean_first_alarm()},
           {"mean_flips", r.mean_flips()},
+          {"reversals", r.reversals_sum},
+          {"max_reversals_per_scenario", r.max_reversals},
           {"learning_blocks", r.learning_blocks},
           {"evaluation_blocks", r.blocks},
           {"errors", r.errors}};
@@ -100,6 +103,8 @@ void AggregateRow::Add(const ScenarioOutcome& o) {
   const ScenarioScore& s = o.score;
   ++scored;
   flips_sum += s.flips;
+  reversals_sum += s.reversals;
+  max_reversals = std::max(max_reversals, s.reversals);
   blocks += s.blocks;
   learning_blocks += s.learning_blocks;
   if (s.faulty) {
@@ -153,8 +158,9 @@ std::string FormatSummary(const std::vector<PartitionSummary>& summary) {
                        p.name == "held_out" ? "HELD-OUT" : "tuning", families,
                        p.overall.scored + p.overall.errors, p.overall.faulty, p.overall.healthy,
                        p.overall.errors > 0 ? fmt::format(", {} errors", p.overall.errors) : "");
-    out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7}\n", "group",
-                       "faulty", "health", "detect", "right", "FA/blk", "first", "flips", "learn");
+    out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7} {:>5}\n",
+                       "group", "faulty", "health", "detect", "right", "FA/blk", "first", "flips",
+                       "learn", "rev");
     FormatRow(out, p.overall);
     for (const AggregateTable& t : p.tables) {
       out += fmt::format("-- by {}\n", t.dimension);
@@ -233,6 +239,7 @@ std::string ToJson(std::string_view matrix, const std::vector<ScenarioOutcome>& 
                     {"right_gear", sc.right_gear},
                     {"first_alarm_block", sc.first_alarm_block},
                     {"flips", sc.flips},
+                    {"reversals", sc.reversals},
                     {"false_alarm_blocks", sc.false_alarm_blocks}};
     }
     scenarios.push_back(std::move(j));

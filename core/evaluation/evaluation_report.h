@@ -11,7 +11,9 @@
 //   first alarm = mean 1-based index of the first alarmed evaluation block, over the faulty
 //                scenarios that alarmed at all,
 //   flips = mean number of state changes within the evaluation blocks, over all scenarios,
-//   learning = evaluation blocks still learning / all evaluation blocks (should be 0).
+//   learning = evaluation blocks still learning / all evaluation blocks (should be 0),
+//   rev = the most reversals (changes to a less severe state) of any one scenario: the
+//                diagnosis issue's "no verdict flips more than once in 5 blocks" bar.
 // Scenarios that failed to run are counted as errors and excluded from every rate.
 // JSON schema: docs/evaluation.md.
 #pragma once
@@ -35,6 +37,8 @@ struct AggregateRow {
   int first_alarm_sum = 0;
   int first_alarm_count = 0;
   int flips_sum = 0;
+  int reversals_sum = 0;
+  int max_reversals = 0;  // the most reversals of any one scenario
   int learning_blocks = 0;
   int blocks = 0;
   int scored = 0;

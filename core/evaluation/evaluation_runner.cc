@@ -195,6 +195,8 @@ ScenarioScore ScoreVerdicts(std::span<const BlockVerdictRecord> evaluation,
     }
     if (s.faulty && VerdictNamesGear(v, true_gear, layout)) ++s.right_gear_blocks;
     if (i > 0 && v.state != evaluation[i - 1].state) ++s.flips;
+    // FaultState is ordered learning < no_fault < suspected < alarm.
+    if (i > 0 && v.state < evaluation[i - 1].state) ++s.reversals;
   }
   const bool majority = 2 * s.alarmed_blocks > s.blocks;
   if (s.faulty) {

@@ -24,7 +24,10 @@
 //    mesh: e.g. Table 1's G3 / G4). An over-broad list (G2, G3 for a G2 fault) does not count.
 //    The scenario's gear is right when a majority of its evaluation blocks is;
 //  - first alarm: 1-based index of the first alarmed evaluation block, 0 = none;
-//  - flips: number of state changes between consecutive evaluation blocks;
+//  - flips: number of state changes between consecutive evaluation blocks (a fault's onset,
+//    no_fault -> suspected -> alarm, is two);
+//  - reversals: the changes to a LESS severe state (alarm -> suspected or no_fault, suspected
+//    -> no_fault): a verdict that flickers; 0 for a steady scenario whose onset escalates;
 //  - false alarms (healthy scenarios): the number of alarmed evaluation blocks;
 //  - learning: evaluation blocks still in kLearning (the pipeline wanted a longer baseline
 //    than the 20 blocks it got; they count as not alarmed).
@@ -72,6 +75,7 @@ struct ScenarioScore {
   bool right_gear = false;
   int first_alarm_block = 0;  // 1-based, 0 = never
   int flips = 0;
+  int reversals = 0;
   int false_alarm_blocks = 0;  // healthy scenarios only
 };
 

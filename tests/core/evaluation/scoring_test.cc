@@ -64,6 +64,7 @@ TEST(Scoring, MajorityFirstAlarmAndFlips) {
   EXPECT_FALSE(s.right_gear);  // 2 of 5 is no majority
   EXPECT_EQ(s.first_alarm_block, 2);
   EXPECT_EQ(s.flips, 3);  // no->sus, sus->alarm, alarm->no
+  EXPECT_EQ(s.reversals, 1);  // alarm->no; the onset's two steps up are not reversals
   EXPECT_EQ(s.false_alarm_blocks, 0);
 
   const std::vector<BlockVerdictRecord> g34 = {V(kAl, "G3", {"G3", "G4"}),
@@ -74,9 +75,11 @@ TEST(Scoring, MajorityFirstAlarmAndFlips) {
   EXPECT_TRUE(r.right_gear);
   EXPECT_EQ(r.first_alarm_block, 1);
   EXPECT_EQ(r.flips, 1);
+  EXPECT_EQ(r.reversals, 1);
 
   const std::vector<BlockVerdictRecord> two = {V(kAl, "G1"), V(kNo), V(kAl, "G1"), V(kNo), V(kNo)};
   EXPECT_FALSE(ScoreVerdicts(two, "G1", t1).detected);
+  EXPECT_EQ(ScoreVerdicts(two, "G1", t1).reversals, 2);
 }
 
 TEST(Scoring, HealthyScenariosCountFalseAlarmBlocks) {
