@@ -7,9 +7,16 @@
 
 namespace gearpath {
 
-// x read at the fractional sample position u, 0 <= u <= n - 1, n >= 4. The stencil is the four
-// samples around u, moved inwards at the block ends.
-inline double InterpolateCubic(const double* x, std::size_t n, double u) noexcept {
+// Where and how to read a signal of n samples at one fractional position: the first of the four
+// samples around it (moved inwards at the block ends) and their Lagrange weights (the third one
+// is subtracted). Computed once, it reads any number of signals at that position.
+struct CubicStencil {
+  std::size_t first = 0;
+  double w0 = 0.0, w1 = 0.0, w2 = 0.0, w3 = 0.0;
+};
+
+// The stencil at u, 0 <= u <= n - 1, n >= 4.
+inline CubicStencil MakeCubicStencil(std::size_t n, double u) noexcept {
   const auto i = static_cast<std::size_t>(u);  // floor, u >= 0
   std::size_t first = i == 0 ? 0 : i - 1;
   if (first + 3 >= n) first = n - 4;
@@ -17,9 +24,17 @@ inline double InterpolateCubic(const double* x, std::size_t n, double u) noexcep
   const double a = t - 1.0;
   const double b = t - 2.0;
   const double c = t - 3.0;
-  const double* s = x + first;
-  return -a * b * c / 6.0 * s[0] + t * b * c / 2.0 * s[1] - t * a * c / 2.0 * s[2] +
-         t * a * b / 6.0 * s[3];
+  return {first, -a * b * c / 6.0, t * b * c / 2.0, t * a * c / 2.0, t * a * b / 6.0};
+}
+
+inline double ApplyCubicStencil(const double* x, const CubicStencil& s) noexcept {
+  const double* p = x + s.first;
+  return s.w0 * p[0] + s.w1 * p[1] - s.w2 * p[2] + s.w3 * p[3];
+}
+
+// x read at the fractional sample position u, 0 <= u <= n - 1, n >= 4.
+inline double InterpolateCubic(const double* x, std::size_t n, double u) noexcept {
+  return ApplyCubicStencil(x, MakeCubicStencil(n, u));
 }
 
 }  // namespace gearpath

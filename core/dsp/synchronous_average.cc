@@ -42,6 +42,7 @@ Result<SynchronousAverage> SynchronousAverage::Create(std::size_t block_length,
   stage.block_length_ = block_length;
   stage.sample_rate_hz_ = sample_rate_hz;
   stage.max_points_ = max_points_per_revolution;
+  stage.plan_ = stage.MakePlan();
   for (std::size_t m = kMinPoints; m <= max_points_per_revolution; m *= 2) {
     Result<FftPlan> forward = FftPlan::Create(FftKind::kRealToComplex, m);
     if (!forward) return Error{what + forward.error()};
@@ -68,10 +69,16 @@ SynchronousAverageRecord SynchronousAverage::MakeRecord() const {
   return record;
 }
 
-Status SynchronousAverage::Process(std::span<const double> signal, double shaft_hz,
-                                   SynchronousAverageRecord& out,
-                                   std::span<const double> warp) noexcept {
-  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
+SynchronousAveragePlan SynchronousAverage::MakePlan() const {
+  SynchronousAveragePlan plan;
+  // R M < 2 N: M < 2 fs / f and R <= (N - 1) f / fs.
+  plan.stencils.assign(2 * block_length_, CubicStencil{});
+  return plan;
+}
+
+Status SynchronousAverage::Plan(double shaft_hz, SynchronousAveragePlan& plan,
+                                std::span<const double> warp) const noexcept {
+  plan.points_per_revolution = 0;
   if (!warp.empty() && warp.size() != block_length_) {
     return Error{std::string(kStage) + ": warp has " + std::to_string(warp.size()) +
                  " values, need " + std::to_string(block_length_) + " (or none)"};
@@ -80,11 +87,8 @@ Status SynchronousAverage::Process(std::span<const double> signal, double shaft_
     return Error{std::string(kStage) + ": shaft_hz " + std::to_string(shaft_hz) +
                  " must be finite and positive"};
   }
-  if (out.tsa_storage.size() < max_points_ || out.order_storage.size() < max_points_ / 2 + 1) {
-    return Error{std::string(kStage) +
-                 ": output record was not made by this stage's MakeRecord() (storage for " +
-                 std::to_string(out.tsa_storage.size()) + " points, need " +
-                 std::to_string(max_points_) + ")"};
+  if (plan.stencils.size() < 2 * block_length_) {
+    return Error{std::string(kStage) + ": plan was not made by this stage's MakePlan()"};
   }
   const double fs = sample_rate_hz_;
   const double samples_per_revolution = fs / shaft_hz;
@@ -96,8 +100,6 @@ Status SynchronousAverage::Process(std::span<const double> signal, double shaft_
                  std::to_string(samples_per_revolution) + " samples per revolution, block of " +
                  std::to_string(block_length_) + ")"};
   }
-  if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) return s;
-
   const std::size_t m_points = PointsPerRevolution(shaft_hz);
   const double step = samples_per_revolution / static_cast<double>(m_points);
   const double last = static_cast<double>(block_length_ - 1);
@@ -113,6 +115,44 @@ Status SynchronousAverage::Process(std::span<const double> signal, double shaft_
                    std::to_string(shaft_hz) + " Hz in the block"};
     }
   }
+  const std::size_t points = revolutions * m_points;
+  for (std::size_t p = 0; p < points; ++p) {
+    const double at = static_cast<double>(p) * step;
+    const double u = warp.empty() ? at : std::clamp(WarpAt(warp, at), 0.0, last);
+    plan.stencils[p] = MakeCubicStencil(block_length_, u);
+  }
+  plan.points_per_revolution = m_points;
+  plan.revolutions = revolutions;
+  plan.shaft_hz = shaft_hz;
+  plan.nyquist_order = 0.5 * samples_per_revolution;
+  return Status::Ok();
+}
+
+Status SynchronousAverage::Process(std::span<const double> signal, double shaft_hz,
+                                   SynchronousAverageRecord& out,
+                                   std::span<const double> warp) noexcept {
+  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
+  if (Status s = Plan(shaft_hz, plan_, warp); !s) return s;
+  return Process(signal, plan_, out);
+}
+
+Status SynchronousAverage::Process(std::span<const double> signal,
+                                   const SynchronousAveragePlan& plan,
+                                   SynchronousAverageRecord& out) noexcept {
+  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
+  if (plan.points_per_revolution == 0) {
+    return Error{std::string(kStage) + ": the plan holds no grid (Plan() failed or never ran)"};
+  }
+  if (out.tsa_storage.size() < max_points_ || out.order_storage.size() < max_points_ / 2 + 1) {
+    return Error{std::string(kStage) +
+                 ": output record was not made by this stage's MakeRecord() (storage for " +
+                 std::to_string(out.tsa_storage.size()) + " points, need " +
+                 std::to_string(max_points_) + ")"};
+  }
+  if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) return s;
+
+  const std::size_t m_points = plan.points_per_revolution;
+  const std::size_t revolutions = plan.revolutions;
   const std::size_t half = m_points / 2;
   FftPlan& forward = forward_[PlanIndex(m_points)];
   FftPlan& inverse = inverse_[PlanIndex(m_points)];
@@ -121,13 +161,9 @@ Status SynchronousAverage::Process(std::span<const double> signal, double shaft_
   std::span<double> average = forward.real_in();
   std::fill(average.begin(), average.end(), 0.0);
   const double* x = signal.data();
-  std::size_t p = 0;
+  const CubicStencil* stencil = plan.stencils.data();
   for (std::size_t r = 0; r < revolutions; ++r) {
-    for (std::size_t m = 0; m < m_points; ++m, ++p) {
-      const double at = static_cast<double>(p) * step;
-      const double u = warp.empty() ? at : std::clamp(WarpAt(warp, at), 0.0, last);
-      average[m] += InterpolateCubic(x, block_length_, u);
-    }
+    for (std::size_t m = 0; m < m_points; ++m) average[m] += ApplyCubicStencil(x, *stencil++);
   }
   const double inv_r = 1.0 / static_cast<double>(revolutions);
   for (double& v : average) v *= inv_r;
@@ -144,7 +180,7 @@ Status SynchronousAverage::Process(std::span<const double> signal, double shaft_
   orders[half] = bins[half].real() * edge;
 
   // Orders above the Nyquist order hold interpolation images only: zero them, rebuild the TSA.
-  const double nyquist_order = 0.5 * samples_per_revolution;
+  const double nyquist_order = plan.nyquist_order;
   if (nyquist_order < static_cast<double>(half)) {
     const auto top = static_cast<std::size_t>(std::floor(nyquist_order));
     for (std::size_t k = top + 1; k <= half; ++k) orders[k] = 0.0;
@@ -159,7 +195,7 @@ Status SynchronousAverage::Process(std::span<const double> signal, double shaft_
 
   out.points_per_revolution = m_points;
   out.revolutions = revolutions;
-  out.shaft_hz = shaft_hz;
+  out.shaft_hz = plan.shaft_hz;
   out.nyquist_order = nyquist_order;
   return Status::Ok();
 }

@@ -47,6 +47,7 @@
 #include <vector>
 
 #include "core/common/result.h"
+#include "core/dsp/cubic_interpolation.h"
 #include "core/dsp/fft_plan.h"
 
 namespace gearpath {
@@ -70,6 +71,18 @@ struct SynchronousAverageRecord {
   std::span<const std::complex<double>> orders() const noexcept {
     return {order_storage.data(), points_per_revolution == 0 ? 0 : points_per_revolution / 2 + 1};
   }
+};
+
+// One shaft's angular grid over one block: per point of the R M averaged, where and how to read
+// the signal (cubic_interpolation.h). It depends only on the rate and the warp, so one plan
+// serves every signal averaged at that rate in a block. Made by SynchronousAverage::MakePlan()
+// (the one allocation), filled by Plan().
+struct SynchronousAveragePlan {
+  std::size_t points_per_revolution = 0;  // M; 0 until Plan() succeeds
+  std::size_t revolutions = 0;            // R
+  double shaft_hz = 0.0;
+  double nyquist_order = 0.0;
+  std::vector<CubicStencil> stencils;  // capacity 2 N > R M (40 B each: 1.3 MB at N = 16 000)
 };
 
 class SynchronousAverage {
@@ -99,6 +112,16 @@ class SynchronousAverage {
   Status Process(std::span<const double> signal, double shaft_hz, SynchronousAverageRecord& out,
                  std::span<const double> warp = {}) noexcept;
 
+  // The same in two steps, for many signals at one rate: Plan() computes the grid of a shaft
+  // at `shaft_hz` (and `warp`) once, Process(signal, plan, out) averages one signal on it
+  // (bit-identical to the one-step Process). Plan() rejects what Process() rejects about the
+  // rate and the warp, and a plan not made by MakePlan(); noexcept, no allocation.
+  SynchronousAveragePlan MakePlan() const;
+  Status Plan(double shaft_hz, SynchronousAveragePlan& plan,
+              std::span<const double> warp = {}) const noexcept;
+  Status Process(std::span<const double> signal, const SynchronousAveragePlan& plan,
+                 SynchronousAverageRecord& out) noexcept;
+
  private:
   SynchronousAverage() = default;
 
@@ -108,6 +131,7 @@ class SynchronousAverage {
   // forward_[i], inverse_[i]: plans of 4 << i points.
   std::vector<FftPlan> forward_;
   std::vector<FftPlan> inverse_;
+  SynchronousAveragePlan plan_;  // the one-step Process()'s grid
 };
 
 }  // namespace gearpath

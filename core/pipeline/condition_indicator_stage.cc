@@ -35,6 +35,9 @@ Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWo
   if (!ind) return Error{"condition indicators: " + ind.error()};
   indicators_.emplace(std::move(ind.value()));
   record_ = tsa_->MakeRecord();
+  plans_.clear();
+  for (std::size_t g = 0; g < machine.rate_groups.size(); ++g) plans_.push_back(tsa_->MakePlan());
+  plan_ok_.assign(machine.rate_groups.size(), 0);
   signal_.assign(work.n, 0.0);
   tracker_.reset();
   warp_.clear();
@@ -235,6 +238,9 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
   const std::size_t groups = m.rate_groups.size();
   const std::span<const double> warp =
       TrackOrders(ctx) ? std::span<const double>(warp_) : std::span<const double>();
+  for (std::size_t g = 0; g < groups; ++g) {
+    plan_ok_[g] = tsa_->Plan(m.rate_groups[g].ratio * w.speed_hz, plans_[g], warp).ok() ? 1 : 0;
+  }
   for (std::size_t sig = 0; sig < m.condition_signals.size(); ++sig) {
     const std::span<const double> signal = SignalOf(ctx, sig);
     for (std::size_t g = 0; g < groups; ++g) {
@@ -243,7 +249,7 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
       const RateGroup& rg = m.rate_groups[g];
       const double shaft_hz = rg.ratio * w.speed_hz;
       w.slot_shaft_hz[slot] = shaft_hz;
-      if (!tsa_->Process(signal, shaft_hz, record_, warp).ok()) continue;
+      if (!plan_ok_[g] || !tsa_->Process(signal, plans_[g], record_).ok()) continue;
       const double na4_reference =
           st.residual_variance_healthy.blocks > 0 ? st.residual_variance_healthy.mean[slot] : 0.0;
       if (!indicators_->Compute(record_.tsa(), record_.orders(), rg.mesh_orders, na4_reference,

@@ -44,6 +44,10 @@ class ConditionIndicatorStage final : public PipelineStage {
   std::vector<double> warp_;  // n: uniform angle -> sample position (order_tracker.h)
   std::optional<GearConditionIndicators> indicators_;
   SynchronousAverageRecord record_;
+  // Per rate group: its shaft's angular grid in this block, shared by every signal; plan_ok_
+  // is 0 where Plan() failed (e.g. less than one revolution in the block).
+  std::vector<SynchronousAveragePlan> plans_;
+  std::vector<std::uint8_t> plan_ok_;
   ConditionIndicatorValues values_;
   std::vector<double> signal_;                       // n: one signal in time
   std::vector<std::vector<std::uint8_t>> exclusive_;  // per group: order line is exclusive

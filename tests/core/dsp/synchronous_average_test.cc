@@ -243,3 +243,46 @@ TEST(SynchronousAverage, ProcessRejectsBadInputNamingTheArgument) {
 
 }  // namespace
 }  // namespace gearpath
+
+namespace gearpath {
+namespace {
+
+// One plan, many signals: Process(signal, plan) gives bit for bit what the one-step Process
+// gives, with and without a warp, and a failed or foreign plan is refused.
+TEST(SynchronousAveragePlan, SharedGridIsBitIdenticalToTheOneStepAverage) {
+  constexpr std::size_t kN = 4096;
+  auto stage = SynchronousAverage::Create(kN, kFs, 4096);
+  ASSERT_TRUE(stage.ok());
+  std::vector<double> warp(kN);
+  for (std::size_t i = 0; i < kN; ++i) {
+    warp[i] = static_cast<double>(i) +
+              2.0 * std::sin(dsp_test::kTwoPi * static_cast<double>(i) / static_cast<double>(kN));
+  }
+  for (const bool warped : {false, true}) {
+    const std::span<const double> wspan =
+        warped ? std::span<const double>(warp) : std::span<const double>();
+    SynchronousAveragePlan plan = stage->MakePlan();
+    ASSERT_TRUE(stage->Plan(kShaftHz, plan, wspan).ok());
+    for (unsigned seed : {1u, 2u, 3u}) {
+      const std::vector<double> x = dsp_test::WhiteNoise(kN, 1.0, seed);
+      SynchronousAverageRecord one = stage->MakeRecord();
+      SynchronousAverageRecord two = stage->MakeRecord();
+      ASSERT_TRUE(stage->Process(x, kShaftHz, one, wspan).ok());
+      ASSERT_TRUE(stage->Process(x, plan, two).ok());
+      ASSERT_EQ(one.revolutions, two.revolutions);
+      ASSERT_EQ(one.points_per_revolution, two.points_per_revolution);
+      for (std::size_t m = 0; m < one.tsa().size(); ++m) ASSERT_EQ(one.tsa()[m], two.tsa()[m]);
+    }
+  }
+  SynchronousAveragePlan failed = stage->MakePlan();
+  EXPECT_FALSE(stage->Plan(0.5, failed).ok());  // under one revolution in the block
+  SynchronousAverageRecord out = stage->MakeRecord();
+  const Status refused = stage->Process(dsp_test::WhiteNoise(kN, 1.0, 4), failed, out);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().find("plan holds no grid"), std::string::npos) << refused.error();
+  SynchronousAveragePlan foreign;  // not made by MakePlan()
+  EXPECT_FALSE(stage->Plan(kShaftHz, foreign).ok());
+}
+
+}  // namespace
+}  // namespace gearpath
