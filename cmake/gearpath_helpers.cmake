@@ -18,11 +18,12 @@ function(gearpath_module name)
   endif()
 endfunction()
 
-# gearpath_module_tests(NAME DEPS ... [TIMEOUT s]): executable `test_<NAME>` from the *_test.cc
-# in this folder, registered with ctest test by test. TIMEOUT is the per-test watchdog, so a
-# hang fails fast instead of stalling CI.
+# gearpath_module_tests(NAME DEPS ... [TIMEOUT s] [EXCLUDE gtest-patterns]): executable
+# `test_<NAME>` from the *_test.cc in this folder, registered with ctest test by test. TIMEOUT is
+# the per-test watchdog, so a hang fails fast instead of stalling CI. EXCLUDE (gtest filter
+# syntax, ':'-separated) keeps tests out of the registration that another ctest entry runs.
 function(gearpath_module_tests name)
-  cmake_parse_arguments(ARG "" "TIMEOUT" "DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "TIMEOUT;EXCLUDE" "DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc)
   if(NOT sources)
     return()
@@ -36,7 +37,11 @@ function(gearpath_module_tests name)
                                              gearpath_warnings)
   target_compile_definitions(test_${name} PRIVATE
     GEARPATH_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")
-  gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60
+  set(filter "")
+  if(ARG_EXCLUDE)
+    set(filter TEST_FILTER "-${ARG_EXCLUDE}")
+  endif()
+  gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60 ${filter}
                        PROPERTIES TIMEOUT ${ARG_TIMEOUT}
                        WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 endfunction()
