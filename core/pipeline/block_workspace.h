@@ -40,8 +40,6 @@ struct BlockWorkspace {
   double speed_hz = 0.0;     // input-shaft speed of this block; 0 = unknown
   SpeedSource speed_source = SpeedSource::kUnknown;
   std::vector<MeshLines> meshes;  // every mesh at this block's speed
-  bool order_tracked = false;      // the synchronous averages followed a tracked speed
-  double order_track_shift = 0.0;  // largest angle correction, in samples at the mean speed
 
   Eigen::MatrixXcd forces;  // paths x in-range bins: identified bearing forces
 

@@ -128,8 +128,6 @@ void ConditionIndicatorStage::Signatures(StageContext& ctx) noexcept {
 bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
   BlockWorkspace& w = ctx.work;
   int& mode = ctx.state.order_tracking_mode;
-  w.order_tracked = false;
-  w.order_track_shift = 0.0;
   if (!tracker_ || w.meshes.empty() || mode == 0) return false;
   // The band stays inside +/- 3/4 of the slowest shaft rate, so a fault's shaft-rate sidebands
   // (its modulation) are not tracked as speed.
@@ -162,30 +160,21 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
       }
     }
   }
-  const auto tracked = best_power > 0.0
-                           ? tracker_->Track(std::span<const double>(w.time).subspan(
-                                                 channel * w.n, w.n),
-                                             carrier, half_band, warp_)
-                           : Result<OrderTrackResult>(Error{"no mesh tone in range"});
+  const std::span<const double> reference =
+      std::span<const double>(w.time).subspan(channel * w.n, w.n);
+  // A block whose tone cannot be tracked (none in range, too weak) is averaged at its mean speed.
+  const bool tracked =
+      best_power > 0.0 && tracker_->Track(reference, carrier, half_band, warp_).ok();
   if (mode == -1) {
     // The machine's one decision: track only when it makes the carrier's shaft average more
     // coherent. Another line inside the band (a shaft harmonic, a second mesh) beats with the
     // carrier and would be tracked as a speed change that is not there.
-    mode = 0;
-    if (tracked) {
-      const std::span<const double> reference =
-          std::span<const double>(w.time).subspan(channel * w.n, w.n);
-      const double constant = MeshCoherence(reference, carrier_shaft, carrier, {});
-      const double warped = MeshCoherence(reference, carrier_shaft, carrier, warp_);
-      if (warped > kTrackingGain * constant) mode = 1;
-    }
-    if (mode == 0) return false;
+    mode = tracked && MeshCoherence(reference, carrier_shaft, carrier, warp_) >
+                          kTrackingGain * MeshCoherence(reference, carrier_shaft, carrier, {})
+               ? 1
+               : 0;
   }
-  // A tracking machine whose block cannot be tracked (a weak tone) is averaged at its mean speed.
-  if (!tracked) return false;
-  w.order_tracked = true;
-  w.order_track_shift = tracked->max_shift_samples;
-  return true;
+  return mode == 1 && tracked;
 }
 
 double ConditionIndicatorStage::MeshCoherence(std::span<const double> signal, double shaft_hz,
