@@ -308,10 +308,12 @@ ParamSpec AnalysisSection() {
                       "Relative tolerance on harmonic positions (speed drift).", 0.0, 0.5, 0.02)}),
        Object("baseline",
               "The machine's healthy baseline, learned from its first accepted blocks (assumed "
-              "healthy): every condition indicator's median and MAD, judged with a z limit "
+              "healthy): every condition indicator's median and robust scale (Qn, or MAD "
+              "beyond 256 blocks), judged with a z limit "
               "from a target false-alarm rate (docs/diagnosis.md).",
               {Integer("learning_blocks",
-                       "Healthy blocks to learn the baseline from (a median and a MAD need three).",
+                       "Healthy blocks to learn the baseline from (a median and a robust scale need "
+                       "three; the scale is Qn from 10 to 256 blocks, else the MAD).",
                        3, 100000, 20),
                Number("false_alarm_rate",
                       "Target rate of healthy blocks in which any scored indicator exceeds its "

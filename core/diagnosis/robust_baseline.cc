@@ -81,6 +81,12 @@ double MedianInPlace(std::span<double> v) noexcept {
   return 0.5 * (lower + upper);
 }
 
+// Degrees of freedom of a standard deviation as noisy as the scale estimate from n blocks
+// (header comment: asymptotic efficiency x n, small-sample corrected by simulation).
+double ScaleDegreesOfFreedom(double n) noexcept {
+  return ScaleIsQn(static_cast<int>(n)) ? 0.8227 * n - 2.5 : 0.3675 * (n + 2.0);
+}
+
 bool FiniteAndNonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
 bool FiniteAndPositive(double v) { return std::isfinite(v) && v > 0.0; }
 
@@ -151,6 +157,22 @@ double StudentTQuantile(double p, double dof) noexcept {
   return p > 0.5 ? t : -t;
 }
 
+double QnScale(std::span<const double> v, std::span<double> pairs) noexcept {
+  const std::size_t n = v.size();
+  if (n < 2 || pairs.size() < n * (n - 1) / 2) return 0.0;
+  std::size_t p = 0;
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) pairs[p++] = std::fabs(v[i] - v[j]);
+  }
+  const std::size_t h = n / 2 + 1;
+  const std::size_t k = h * (h - 1) / 2;  // 1-based rank of the order statistic
+  const auto kth = pairs.begin() + static_cast<std::ptrdiff_t>(k - 1);
+  std::nth_element(pairs.begin(), kth, pairs.begin() + static_cast<std::ptrdiff_t>(p));
+  const double nd = static_cast<double>(n);
+  const double small_sample = n % 2 == 0 ? nd / (nd + 3.8) : nd / (nd + 1.4);
+  return kQnToSigma * small_sample * *kth;
+}
+
 Result<RobustBaseline> RobustBaseline::Create(std::size_t indicators,
                                               const RobustBaselineOptions& options) {
   if (std::string e = ValidateCommon(options.blocks, indicators, options.relative_floor,
@@ -180,6 +202,10 @@ Result<RobustBaseline> RobustBaseline::Create(std::size_t indicators,
   }
   b.samples_.assign(static_cast<std::size_t>(options.blocks) * indicators, 0.0);
   b.scratch_.assign(static_cast<std::size_t>(options.blocks), 0.0);
+  if (ScaleIsQn(options.blocks)) {
+    const auto n = static_cast<std::size_t>(options.blocks);
+    b.pairs_.assign(n * (n - 1) / 2, 0.0);
+  }
   b.median_.assign(indicators, 0.0);
   b.scale_.assign(indicators, 0.0);
   return b;
@@ -301,18 +327,20 @@ void RobustBaseline::Finalise() noexcept {
   const auto n = static_cast<std::size_t>(blocks_);
   for (std::size_t i = 0; i < indicators_; ++i) {
     for (std::size_t b = 0; b < n; ++b) scratch_[b] = Transform(i, samples_[b * indicators_ + i]);
+    // Qn first: MedianInPlace reorders the values, which Qn does not mind.
+    const double qn = pairs_.empty() ? 0.0 : QnScale(scratch_, pairs_);
     const double median = MedianInPlace(scratch_);
     double largest = 0.0;
     for (double& v : scratch_) {
       v = std::fabs(v - median);
       largest = std::max(largest, v);
     }
-    const double mad = MedianInPlace(scratch_);
+    const double sigma = pairs_.empty() ? kMadToSigma * MedianInPlace(scratch_) : qn;
     const double tail = tail_z_ > 0.0 ? largest / tail_z_ : 0.0;
     const double relative = log_[i] != 0 ? std::log1p(relative_floor_)  // x (1 + r) on log scale
                                          : relative_floor_ * std::fabs(median);
     median_[i] = median;
-    scale_[i] = std::max({kMadToSigma * mad, relative, absolute_floor_, tail});
+    scale_[i] = std::max({sigma, relative, absolute_floor_, tail});
   }
 }
 
@@ -343,8 +371,8 @@ double RobustBaseline::ZForFalseAlarmRate(double per_block_rate, int tests,
   const double p = 1.0 - 0.5 * alpha;
   if (baseline_blocks == 0) return InverseNormalCdf(p);
   const double n = baseline_blocks;
-  const double nu = 0.3675 * (n + 2.0);  // MAD's Gaussian efficiency x N, small-N corrected
-  return std::sqrt(1.0 + std::numbers::pi / (2.0 * n)) * StudentTQuantile(p, nu);
+  return std::sqrt(1.0 + std::numbers::pi / (2.0 * n)) *
+         StudentTQuantile(p, ScaleDegreesOfFreedom(n));
 }
 
 double RobustBaseline::ValueAtZ(std::size_t i, double z) const noexcept {

@@ -136,6 +136,7 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
     if (!po.accepted()) {
       return Error{fmt::format("block {} rejected: {}", b, po.message.view())};
     }
+    if (options.observe) options.observe(sc, b, result);
     if (!evaluation) continue;
     BlockVerdictRecord rec;
     rec.state = result.verdict.state;

@@ -45,6 +45,8 @@
 
 namespace gearpath {
 
+struct BlockResult;  // core/pipeline/block_processor.h
+
 inline constexpr int kBaselineBlocks = 20;
 inline constexpr int kEvaluationBlocks = 5;
 
@@ -55,6 +57,10 @@ struct RunnerOptions {
   std::uint32_t block_length = 8192;
   double target_rms_change = 0.03;  // <= 0: keep the default severities
   bool order_tracking = false;      // AnalysisOptions::order_tracking of every machine
+  // Optional: called after every processed block (baseline and evaluation) with the block's
+  // index (0-based; evaluation blocks from baseline_blocks on) and its result, on the
+  // scenario's worker thread (the callee serialises). For analysts studying the indicators.
+  std::function<void(const Scenario&, int block, const BlockResult&)> observe;
 };
 
 // A verdict copied out of a BlockResult (which only holds views into its processor).

@@ -1,7 +1,7 @@
 // IndicatorScoringStage: every condition indicator judged against the machine's own healthy
 // baseline (DESIGN.md: never against zero). The first baseline_blocks accepted blocks with a
 // known speed are the healthy baseline: per indicator a robust location and scale (median,
-// MAD with a relative floor, on a log scale: every indicator is a positive ratio, energy or
+// Qn or MAD with a relative floor, on a log scale: every indicator is a positive ratio, energy or
 // moment; core/diagnosis/robust_baseline.h). Afterwards each indicator gets a robust z-score,
 // and the block's score is the largest DIRECTIONAL z (a rise for indicators that damage
 // raises; either way for the mesh-harmonic amplitude and the TSA level, which a broken tooth

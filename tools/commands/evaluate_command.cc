@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "core/evaluation/evaluation_report.h"
 #include "core/evaluation/evaluation_runner.h"
 #include "core/evaluation/scenario_matrix.h"
+#include "core/pipeline/block_processor.h"
 #include "tools/commands/commands.h"
 
 namespace gearpath::tools {
@@ -31,7 +34,40 @@ struct EvaluateArgs {
   bool list = false;
   bool quiet = false;
   bool order_tracking = false;
+  std::string dump_blocks_path;
 };
+
+// One JSON line per processed block: what the verdict stood on (docs/evaluation.md).
+nlohmann::json BlockLine(const Scenario& sc, int block, const BlockResult& r) {
+  nlohmann::json line;
+  line["key"] = sc.Key();
+  line["gear"] = sc.gear;
+  line["block"] = block;
+  line["state"] = std::string(ToString(r.verdict.state));
+  line["verdict_gear"] = std::string(r.verdict.gear_name);
+  line["verdict_shaft"] = std::string(r.verdict.shaft_name);
+  line["score"] = r.score.score;
+  line["limit_z"] = r.score.limit_z;
+  nlohmann::json& shafts = line["shafts"];
+  shafts = nlohmann::json::array();
+  for (const BlockShaftIndicator& s : r.shafts) {
+    shafts.push_back({{"shaft", std::string(s.shaft)},
+                      {"hz", s.characteristic_hz},
+                      {"raw", s.raw},
+                      {"reconstructed", s.reconstructed}});
+  }
+  nlohmann::json& condition = line["condition"];
+  condition = nlohmann::json::array();
+  for (const BlockConditionIndicators& c : r.condition) {
+    condition.push_back({{"source", std::string(ToString(c.source))},
+                         {"signal", std::string(c.signal)},
+                         {"shaft", std::string(c.shaft)},
+                         {"revolutions", c.revolutions},
+                         {"value", std::vector<double>(c.value.begin(), c.value.end())},
+                         {"z", std::vector<double>(c.z.begin(), c.z.end())}});
+  }
+  return line;
+}
 
 int RunEvaluate(const EvaluateArgs& args) {
   const std::optional<MatrixSize> size = ParseMatrixSize(args.matrix);
@@ -83,6 +119,22 @@ int RunEvaluate(const EvaluateArgs& args) {
   const bool quiet = args.quiet;
   RunnerOptions runner;
   runner.order_tracking = args.order_tracking;
+  std::ofstream dump;
+  std::mutex dump_mutex;
+  if (!args.dump_blocks_path.empty()) {
+    dump.open(args.dump_blocks_path);
+    if (!dump) {
+      std::fprintf(stderr, "gearpath evaluate: cannot write --dump-blocks file '%s'\n",
+                   args.dump_blocks_path.c_str());
+      return kExitFailure;
+    }
+    runner.observe = [&dump, &dump_mutex](const Scenario& sc, int block, const BlockResult& r) {
+      const std::string text = BlockLine(sc, block, r).dump(-1, ' ', false,
+                                                            nlohmann::json::error_handler_t::replace);
+      const std::lock_guard<std::mutex> lock(dump_mutex);
+      dump << text << '\n';
+    };
+  }
   const std::vector<ScenarioOutcome> outcomes = RunScenarios(
       scenarios, runner, threads,
       [quiet, &start](std::size_t done, std::size_t total, const ScenarioOutcome& o) {
@@ -145,6 +197,9 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--list", args->list, "list the selected scenarios and their seeds, run nothing");
   cmd->add_flag("--quiet", args->quiet, "no progress lines on stderr");
+  cmd->add_option("--dump-blocks", args->dump_blocks_path,
+                  "write one JSON line per processed block (scenario, verdict, score, envelope "
+                  "and condition indicators with their z), for studying the indicators");
   cmd->add_flag("--order-tracking", args->order_tracking,
                 "run the machines with analysis.speed.order_tracking on (default off)");
   cmd->callback([args, &exit_code] { exit_code = RunEvaluate(*args); });

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -97,6 +98,55 @@ TEST(RobustBaselineTest, MedianAndMadOfAKnownSampleMatchTheHandComputation) {
   EXPECT_NEAR(z[0], 2.0, 1e-12);
   EXPECT_EQ(b.ZScores(std::vector<double>{5.0 - 2.9652}, z), 0);
   EXPECT_NEAR(z[0], -1.0, 1e-12);  // signed
+}
+
+TEST(RobustBaselineTest, QnOfAKnownSampleMatchesTheHandComputation) {
+  // N = 10: {0, 1, ..., 8, 100}. h = 6, so Qn takes the C(6, 2) = 15th smallest of the 45
+  // pairwise distances. Among 0..8 there are 8 pairs at distance 1 and 7 at distance 2, so the
+  // 15th smallest is 2 (the outlier's distances are all >= 92). Scale = 2.2219 x 10 / 13.8 x 2.
+  RobustBaseline b = Make(1, 10);
+  for (double v : {5.0, 100.0, 0.0, 8.0, 1.0, 7.0, 2.0, 6.0, 3.0, 4.0}) {
+    b.Add(std::vector<double>{v});
+  }
+  ASSERT_TRUE(b.learned());
+  EXPECT_DOUBLE_EQ(b.median()[0], 4.5);
+  EXPECT_NEAR(b.scale()[0], 2.2219 * 10.0 / 13.8 * 2.0, 1e-12);
+  // The same sample through the free function; odd N = 9 (drop the outlier): h = 5, the
+  // C(5, 2) = 10th smallest of 36 distances = 2 (8 at 1, 7 at 2); factor 9 / 10.4.
+  std::vector<double> pairs(36);
+  const std::vector<double> nine = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+  EXPECT_NEAR(QnScale(nine, pairs), 2.2219 * 9.0 / 10.4 * 2.0, 1e-12);
+}
+
+TEST(RobustBaselineTest, QnEstimatesSigmaAndIsLessNoisyThanTheMad) {
+  // Gaussian samples of N = 20: the mean of Qn is sigma within 2 %, and its spread is well
+  // under the MAD's (relative variances ~1/(2 x 14) against ~1/(2 x 7.2)).
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> g(0.0, 3.0);
+  std::vector<double> x(20), pairs(190), dev(20);
+  double qn_sum = 0.0, qn_sq = 0.0, mad_sum = 0.0, mad_sq = 0.0;
+  const int runs = 4000;
+  for (int r = 0; r < runs; ++r) {
+    for (double& v : x) v = g(rng);
+    const double qn = QnScale(x, pairs);
+    std::vector<double> sorted = x;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = 0.5 * (sorted[9] + sorted[10]);
+    for (std::size_t i = 0; i < x.size(); ++i) dev[i] = std::fabs(x[i] - median);
+    std::sort(dev.begin(), dev.end());
+    const double mad = kMadToSigma * 0.5 * (dev[9] + dev[10]);
+    qn_sum += qn;
+    qn_sq += qn * qn;
+    mad_sum += mad;
+    mad_sq += mad * mad;
+  }
+  const double qn_mean = qn_sum / runs, mad_mean = mad_sum / runs;
+  const double qn_rel_var = qn_sq / runs / (qn_mean * qn_mean) - 1.0;
+  const double mad_rel_var = mad_sq / runs / (mad_mean * mad_mean) - 1.0;
+  EXPECT_NEAR(qn_mean, 3.0, 0.06);
+  EXPECT_LT(qn_rel_var, 0.65 * mad_rel_var);
+  std::printf("[ info ] N = 20: Qn mean %.4f (sigma 3), relative variance Qn %.4f, MAD %.4f\n",
+              qn_mean, qn_rel_var, mad_rel_var);
 }
 
 TEST(RobustBaselineTest, EvenSampleTakesTheMeanOfTheTwoMiddleValues) {
@@ -228,10 +278,16 @@ TEST(RobustBaselineTest, ThresholdGrowsWithIndicatorsAndShrinksWithBaselineBlock
   const double known = RobustBaseline::ZForFalseAlarmRate(0.01, 20, 0);
   EXPECT_NEAR(known, InverseNormalCdf(1.0 - 0.01 / 40.0), 1e-12);
   EXPECT_NEAR(known, 3.4807564, 1e-6);
-  // nu = 0.3675 x 52 = 19.11, sqrt(1 + pi/100) = 1.015586.
-  EXPECT_NEAR(
-      RobustBaseline::ZForFalseAlarmRate(0.01, 20, 50),
-      std::sqrt(1.0 + std::numbers::pi / 100.0) * StudentTQuantile(1.0 - 0.01 / 40.0, 19.11), 1e-9);
+  // N = 50 uses Qn: nu = 0.8227 x 50 - 2.5 = 38.635, sqrt(1 + pi/100) = 1.015586.
+  EXPECT_NEAR(RobustBaseline::ZForFalseAlarmRate(0.01, 20, 50),
+              std::sqrt(1.0 + std::numbers::pi / 100.0) *
+                  StudentTQuantile(1.0 - 0.01 / 40.0, 38.635),
+              1e-9);
+  // N = 300 (beyond kQnMaxBlocks) uses the MAD: nu = 0.3675 x 302 = 110.985.
+  EXPECT_NEAR(RobustBaseline::ZForFalseAlarmRate(0.01, 20, 300),
+              std::sqrt(1.0 + std::numbers::pi / 600.0) *
+                  StudentTQuantile(1.0 - 0.01 / 40.0, 110.985),
+              1e-9);
   double previous = 0.0;
   for (int k : {20, 40, 80}) {
     const double z = RobustBaseline::ZForFalseAlarmRate(0.01, k, 20);
@@ -292,6 +348,18 @@ TEST(RobustBaselineTest, RealisedFalseAlarmRateMatchesTheTargetOverManyBaselines
   EXPECT_LE(rate, 0.015);
   EXPECT_GE(rate, 0.003);
   std::printf("[ info ] Z(1 %%, K 20, N 50) = %.4f, realised per-block rate %.4f %%\n", z,
+              100.0 * rate);
+}
+
+// The Qn branch at the daemon's default N = 20 with many indicators (the regime of the
+// evaluation machines), and the MAD branch beyond kQnMaxBlocks' reach is the N = 50 test's
+// former form: each realises the target within the same bounds.
+TEST(RobustBaselineTest, RealisedFalseAlarmRateMatchesTheTargetWithQnAtTwentyBlocks) {
+  const double z = RobustBaseline::ZForFalseAlarmRate(0.01, 80, 20);
+  const double rate = RealisedRate(z, 80, 20, 1000, 100, 4048);
+  EXPECT_LE(rate, 0.015);
+  EXPECT_GE(rate, 0.003);
+  std::printf("[ info ] Z(1 %%, K 80, N 20) = %.4f, realised per-block rate %.4f %%\n", z,
               100.0 * rate);
 }
 

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/evaluation/evaluation_report.h"
+#include "core/pipeline/block_processor.h"
 
 namespace gearpath {
 namespace {
@@ -50,6 +51,33 @@ TEST(EvaluationRunner, RunsAScenarioReproducibly) {
   EXPECT_EQ(j["summary"]["tuning"]["overall"]["detected"], a.score.detected ? 1 : 0);
   EXPECT_TRUE(j["summary"]["tuning"]["by"].contains("speed_band"));
   EXPECT_FALSE(FormatSummary(summary).empty());
+}
+
+// The observer sees every block, baseline and evaluation, in order, with the verdict the
+// scenario records for the evaluation ones (what `gearpath evaluate --dump-blocks` writes).
+TEST(EvaluationRunner, ObserverSeesEveryBlockWithTheRecordedVerdicts) {
+  const Scenario s = TePulseOnG1();
+  RunnerOptions options;
+  std::vector<int> blocks;
+  std::vector<FaultState> states;
+  std::vector<double> limits;
+  options.observe = [&](const Scenario& sc, int block, const BlockResult& r) {
+    EXPECT_EQ(sc.Key(), s.Key());
+    blocks.push_back(block);
+    states.push_back(r.verdict.state);
+    limits.push_back(r.score.limit_z);
+  };
+  const ScenarioOutcome o = RunScenario(s, options);
+  ASSERT_TRUE(o.error.empty()) << o.error;
+  ASSERT_EQ(blocks.size(), static_cast<std::size_t>(kBaselineBlocks + kEvaluationBlocks));
+  for (std::size_t i = 0; i < blocks.size(); ++i) EXPECT_EQ(blocks[i], static_cast<int>(i));
+  EXPECT_EQ(states.front(), FaultState::kLearning);
+  EXPECT_EQ(limits.front(), 0.0);  // no limit while learning
+  for (int e = 0; e < kEvaluationBlocks; ++e) {
+    EXPECT_EQ(states[static_cast<std::size_t>(kBaselineBlocks + e)],
+              o.verdicts[static_cast<std::size_t>(e)].state);
+    EXPECT_GT(limits[static_cast<std::size_t>(kBaselineBlocks + e)], 0.0);
+  }
 }
 
 TEST(EvaluationRunner, ReportsAScenarioThatCannotRun) {
