@@ -277,7 +277,12 @@ ParamSpec AnalysisSection() {
                        "Track the speed's variation within each block from its strongest mesh "
                        "tone and average the shafts at the tracked angle (off: constant speed "
                        "per block; off by default, docs/diagnosis.md).",
-                       false)}),
+                       false),
+               Boolean("localisation_tracking",
+                       "With order_tracking off: track the speed within each block for the "
+                       "shaft localisation only (the exclusive residual that names the shaft); "
+                       "every scored indicator stays at constant speed (docs/diagnosis.md).",
+                       true)}),
        Object("dominant_path", "How the dominant transfer path is chosen.",
               {Enum("criterion",
                     "sideband_energy: energy at mesh-harmonic sidebands; band_energy: energy in "

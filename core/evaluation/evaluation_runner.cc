@@ -120,6 +120,7 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   setup.train = *layout;
   setup.options.sample_rate_hz = options.sample_rate_hz;
   setup.options.order_tracking = options.order_tracking;
+  setup.options.localisation_tracking = options.localisation_tracking;
   Result<BlockProcessor> processor = BlockProcessor::Create(std::move(setup));
   if (!processor) return Error{"block processor: " + processor.error()};
   if (Status st = processor->Prepare(options.block_length); !st) {

@@ -57,6 +57,7 @@ struct RunnerOptions {
   std::uint32_t block_length = 8192;
   double target_rms_change = 0.03;  // <= 0: keep the default severities
   bool order_tracking = false;      // AnalysisOptions::order_tracking of every machine
+  bool localisation_tracking = true;  // AnalysisOptions::localisation_tracking
   // Optional: called after every processed block (baseline and evaluation) with the block's
   // index (0-based; evaluation blocks from baseline_blocks on) and its result, on the
   // scenario's worker thread (the callee serialises). For analysts studying the indicators.

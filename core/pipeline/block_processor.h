@@ -77,6 +77,12 @@ struct AnalysisOptions {
   // shafts at the tracked angle (core/dsp/order_tracker.h); off = constant speed per block.
   // Off by default: it helped the tuning families and hurt the held-out one (docs/diagnosis.md).
   bool order_tracking = false;
+  // Track it for the shaft localisation only (when order_tracking is off): the exclusive
+  // residual that names the shaft is taken from tracked averages, every scored indicator from
+  // constant-speed ones. Drift smears a shaft's high orders into its neighbours' and named the
+  // wrong shaft in most drifting tuning scenarios; the scores keep the held-out family's figures
+  // (docs/diagnosis.md, section 11).
+  bool localisation_tracking = true;
 
   // --- Dominant path ---
   enum class DominantCriterion : std::uint8_t {

@@ -37,11 +37,19 @@ Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWo
   record_ = tsa_->MakeRecord();
   plans_.clear();
   for (std::size_t g = 0; g < machine.rate_groups.size(); ++g) plans_.push_back(tsa_->MakePlan());
+  tracked_plans_.clear();
+  const AnalysisOptions& o = machine.setup.options;
+  const bool localisation_only = o.localisation_tracking && !o.order_tracking;
+  if (localisation_only) {
+    for (std::size_t g = 0; g < machine.rate_groups.size(); ++g) {
+      tracked_plans_.push_back(tsa_->MakePlan());
+    }
+  }
   plan_ok_.assign(machine.rate_groups.size(), 0);
   signal_.assign(work.n, 0.0);
   tracker_.reset();
   warp_.clear();
-  if (machine.setup.options.order_tracking) {
+  if (o.order_tracking || localisation_only) {
     // A block too short to track (under 64 samples) is averaged at constant speed.
     if (auto tracker = OrderTracker::Create(work.n, fs); tracker) {
       tracker_.emplace(std::move(tracker).value());
@@ -104,13 +112,13 @@ void ConditionIndicatorStage::KeepSignatureLines(StageContext& ctx, std::size_t 
   }
 }
 
-// Parallel and orthogonal sideband energies of every signature slot.
-void ConditionIndicatorStage::Signatures(StageContext& ctx) noexcept {
+void ConditionIndicatorStage::Signatures(StageContext& ctx, bool tracked) noexcept {
   BlockWorkspace& w = ctx.work;
   const MachineContext& m = ctx.machine;
   const auto width = static_cast<std::size_t>(2 * kSignatureSidebands + 1);
   for (std::size_t i = 0; i < m.signature_slots.size(); ++i) {
     const SignatureSlot& ss = m.signature_slots[i];
+    if (tracked && ss.forces) continue;
     const std::size_t sensors = ss.forces ? m.paths : m.channels;
     MeshSignatureEnergy sum;
     const BlockWorkspace::Cd* base = w.signature_lines.data() + i * w.signature_stride;
@@ -120,8 +128,13 @@ void ConditionIndicatorStage::Signatures(StageContext& ctx) noexcept {
               base + static_cast<std::size_t>(h) * w.signature_sensors * width, sensors * width),
           sensors, kSignatureSidebands, sum);
     }
-    w.indicators[ss.offset] = sum.parallel;
-    w.indicators[ss.offset + 1] = sum.orthogonal;
+    const std::size_t at = tracked ? ss.tracked_offset : ss.offset;
+    w.indicators[at] = sum.parallel;
+    w.indicators[at + 1] = sum.orthogonal;
+    if (!tracked && !ss.forces) {  // the localisation's entries, unless tracking replaces them
+      w.indicators[ss.tracked_offset] = sum.parallel;
+      w.indicators[ss.tracked_offset + 1] = sum.orthogonal;
+    }
   }
 }
 
@@ -191,6 +204,35 @@ double ConditionIndicatorStage::MeshCoherence(std::span<const double> signal, do
   return power;
 }
 
+double ConditionIndicatorStage::ExclusiveEnergy(std::size_t g) const noexcept {
+  // Units^2: comparable between rate groups of one signal.
+  const auto orders = record_.orders();
+  const std::vector<std::uint8_t>& mask = exclusive_[g];
+  double exclusive = 0.0;
+  for (std::size_t k = 1; k < orders.size() && k < mask.size(); ++k) {
+    if (mask[k]) exclusive += 0.5 * std::norm(orders[k]);
+  }
+  return exclusive;
+}
+
+void ConditionIndicatorStage::TrackedLocalisation(StageContext& ctx) noexcept {
+  BlockWorkspace& w = ctx.work;
+  const MachineContext& m = ctx.machine;
+  const std::size_t groups = m.rate_groups.size();
+  for (std::size_t g = 0; g < groups; ++g) {
+    if (!tsa_->Plan(m.rate_groups[g].ratio * w.speed_hz, tracked_plans_[g], warp_).ok()) continue;
+    for (std::size_t c = 0; c < m.channels; ++c) {
+      const std::size_t slot = c * groups + g;  // measured signals come first
+      if (!w.slot_valid[slot]) continue;
+      const std::span<const double> signal = std::span<const double>(w.time).subspan(c * w.n, w.n);
+      if (!tsa_->Process(signal, tracked_plans_[g], record_).ok()) continue;
+      w.indicators[m.tracked_offset + slot] = ExclusiveEnergy(g);
+      KeepSignatureLines(ctx, c, g);  // overwrites the measured lines (already used)
+    }
+  }
+  Signatures(ctx, /*tracked=*/true);
+}
+
 // The time signal of condition signal `signal` (a view of the block or of signal_).
 std::span<const double> ConditionIndicatorStage::SignalOf(const StageContext& ctx,
                                                           std::size_t signal) noexcept {
@@ -225,8 +267,10 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
   std::fill(w.signature_lines.begin(), w.signature_lines.end(), BlockWorkspace::Cd{});
   if (!(w.speed_hz > 0.0)) return RejectReason::kNone;
   const std::size_t groups = m.rate_groups.size();
+  const bool tracked = TrackOrders(ctx);
   const std::span<const double> warp =
-      TrackOrders(ctx) ? std::span<const double>(warp_) : std::span<const double>();
+      tracked && m.setup.options.order_tracking ? std::span<const double>(warp_)
+                                                : std::span<const double>();
   for (std::size_t g = 0; g < groups; ++g) {
     plan_ok_[g] = tsa_->Plan(m.rate_groups[g].ratio * w.speed_hz, plans_[g], warp).ok() ? 1 : 0;
   }
@@ -250,21 +294,17 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
       std::copy(values_.value.begin(), values_.value.end(), out);
       std::size_t e = kConditionIndicatorCount;
       for (std::size_t i = 0; i < rg.meshes.size(); ++i) out[e++] = values_.sideband_energy[i];
-      // Exclusive residual energy (units^2): comparable between rate groups of one signal.
-      const auto orders = record_.orders();
-      const std::vector<std::uint8_t>& mask = exclusive_[g];
-      double exclusive = 0.0;
-      for (std::size_t k = 1; k < orders.size() && k < mask.size(); ++k) {
-        if (mask[k]) exclusive += 0.5 * std::norm(orders[k]);
-      }
-      out[e] = exclusive;
+      out[e] = ExclusiveEnergy(g);
+      // The localisation's entry: this value unless TrackedExclusive() replaces it.
+      if (cs.signal < m.channels) w.indicators[m.tracked_offset + slot] = out[e];
       w.slot_valid[slot] = 1;
       w.slot_revolutions[slot] = static_cast<int>(record_.revolutions);
       w.slot_residual_variance[slot] = values_.residual_variance;
       KeepSignatureLines(ctx, sig, g);
     }
   }
-  Signatures(ctx);
+  Signatures(ctx, /*tracked=*/false);
+  if (tracked && !tracked_plans_.empty()) TrackedLocalisation(ctx);
   return RejectReason::kNone;
 }
 

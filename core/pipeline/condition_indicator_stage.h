@@ -29,7 +29,9 @@ class ConditionIndicatorStage final : public PipelineStage {
  private:
   std::span<const double> SignalOf(const StageContext& ctx, std::size_t signal) noexcept;
   void KeepSignatureLines(StageContext& ctx, std::size_t signal, std::size_t group) noexcept;
-  void Signatures(StageContext& ctx) noexcept;
+  // Parallel and orthogonal energies of every signature slot from the kept lines; with
+  // `tracked`, only the measured slots', into their tracked entries.
+  void Signatures(StageContext& ctx, bool tracked) noexcept;
   // Tracks this block's speed variation from its strongest mesh tone into warp_; false (and
   // constant speed) when tracking is off, the block too short or the tone too weak. The
   // machine's first block with a speed decides, once, whether it is tracked at all
@@ -38,6 +40,12 @@ class ConditionIndicatorStage final : public PipelineStage {
   // Power of the first mesh harmonics in `signal`'s average at `shaft_hz` (uses record_).
   double MeshCoherence(std::span<const double> signal, double shaft_hz, double mesh_hz,
                        std::span<const double> warp) noexcept;
+  // Exclusive residual energy of the last average (record_) at rate group g.
+  double ExclusiveEnergy(std::size_t g) const noexcept;
+  // AnalysisOptions::localisation_tracking: the measured slots' exclusive residuals and
+  // transfer signatures again, from averages at the tracked angle (warp_), into the indicator
+  // vector's tracked entries (MachineContext::tracked_offset).
+  void TrackedLocalisation(StageContext& ctx) noexcept;
 
   std::optional<SynchronousAverage> tsa_;
   std::optional<OrderTracker> tracker_;
@@ -48,6 +56,7 @@ class ConditionIndicatorStage final : public PipelineStage {
   // is 0 where Plan() failed (e.g. less than one revolution in the block).
   std::vector<SynchronousAveragePlan> plans_;
   std::vector<std::uint8_t> plan_ok_;
+  std::vector<SynchronousAveragePlan> tracked_plans_;  // localisation tracking, per rate group
   ConditionIndicatorValues values_;
   std::vector<double> signal_;                       // n: one signal in time
   std::vector<std::vector<std::uint8_t>> exclusive_;  // per group: order line is exclusive

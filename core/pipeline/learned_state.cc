@@ -85,6 +85,7 @@ std::uint64_t LearnedStateFingerprint(const MachineContext& m) {
   h.Number(o.speed_search_lo_hz);
   h.Number(o.speed_search_hi_hz);
   h.Number(o.order_tracking ? 1 : 0);
+  h.Number(o.localisation_tracking ? 1 : 0);
   h.Number(static_cast<double>(o.criterion));
   h.Number(o.criterion_over_baseline ? 1 : 0);
   h.Number(m.band_lo);

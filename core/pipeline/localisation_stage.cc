@@ -37,8 +37,9 @@ std::array<double, kMaxMeshesPerShaft> MeshEvidence(const MachineContext& m,
     std::array<double, kMaxMeshesPerShaft> par{}, orth{};
     for (const SignatureSlot& ss : m.signature_slots) {
       if (ss.group != g || ss.forces != forces) continue;
-      par[ss.mesh] = w.excess[ss.offset];
-      orth[ss.mesh] = w.excess[ss.offset + 1];
+      const std::size_t at = forces ? ss.offset : ss.tracked_offset;  // measured: tracked
+      par[ss.mesh] = w.excess[at];
+      orth[ss.mesh] = w.excess[at + 1];
     }
     std::array<double, kMaxMeshesPerShaft> e{};
     double total = 0.0;
@@ -81,7 +82,7 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
     if (!w.slot_valid[s] || m.condition_signals[cs.signal].source != ConditionSource::kMeasured) {
       continue;
     }
-    group_excess_[cs.group] += w.excess[cs.offset + cs.count - 1];
+    group_excess_[cs.group] += w.excess[m.tracked_offset + s];  // exclusive residual (tracked)
   }
   // The shaft evidence accumulates over the blocks at or above the clear level (a fault's
   // blocks) and decays by half on each quiet block, so one block's noisy evidence cannot name

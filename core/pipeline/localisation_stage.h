@@ -17,6 +17,9 @@
 //     families both were right about half the time: the lumped model couples the meshes
 //     through the shared shaft's rotation, and an additive pulse's comb spreads over every
 //     mesh's neighbourhood.)
+//  Both read the measured channels' entries from order-tracked averages when the machine is
+//  tracked for localisation (AnalysisOptions::localisation_tracking; MachineContext::
+//  tracked_offset): speed drift within a block smears constant-speed averages across groups.
 //  The shaft evidence accumulates over the blocks at or above the clear level (the fault's
 //  blocks) and decays by half on each quiet block: one block's noisy evidence does not name
 //  the shaft (MachineState keeps the sums).

@@ -293,7 +293,14 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
   for (const char* kind : {"envelope_raw_", "envelope_rec_"}) {
     for (const TrainShaft& s : train.shafts) impl->envelope_names.push_back(kind + s.name);
   }
-  impl->indicator_count = offset + impl->envelope_names.size();
+  impl->tracked_offset = offset + impl->envelope_names.size();
+  offset = impl->tracked_offset + set.channels.size() * impl->rate_groups.size();
+  for (SignatureSlot& ss : impl->signature_slots) {
+    if (ss.forces) continue;
+    ss.tracked_offset = offset;
+    offset += 2;
+  }
+  impl->indicator_count = offset;
   // The forces' entries are not scored (indicator_scoring_stage.h): the z limit counts the rest.
   for (const ConditionSlot& cs : impl->condition_slots) {
     if (impl->condition_signals[cs.signal].source != ConditionSource::kForce) {

@@ -55,6 +55,9 @@ struct SignatureSlot {
   bool forces = false;     // false: measured channels; true: identified bearing forces
   std::size_t mesh = 0;    // index into rate_groups[group].meshes
   std::size_t offset = 0;  // first of the two entries
+  // Measured slots: the two entries again from order-tracked averages (localisation only;
+  // MachineContext::tracked_offset); 0 for the forces' slots.
+  std::size_t tracked_offset = 0;
 };
 
 // Sidebands and mesh harmonics the transfer signature looks at.
@@ -84,6 +87,11 @@ struct MachineContext {
   std::vector<std::string> signature_names;  // one per entry, from signature_slots.front()
   std::size_t signature_offset = 0;
   std::size_t envelope_offset = 0;     // first envelope entry in the indicator vector
+  // Then, per measured slot s (s < channels x rate groups), the exclusive residual of the
+  // order-tracked average at tracked_offset + s (the same value when the block is not tracked):
+  // the localisation's shaft evidence, never scored; then the measured signature slots' entries
+  // from tracked averages (SignatureSlot::tracked_offset), the localisation's mesh evidence.
+  std::size_t tracked_offset = 0;
   std::size_t indicator_count = 0;     // length of the indicator vector
   std::size_t scored_indicator_count = 0;  // entries that can raise the block's score
   std::vector<std::string> envelope_names;  // "envelope_raw_<shaft>", "envelope_rec_<shaft>"

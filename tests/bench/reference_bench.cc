@@ -1,7 +1,9 @@
 // The reference workload of the performance issue through BlockProcessor::Process (validation to
 // verdict): 12 response channels x 12 transfer paths, 8 kHz, 2-s blocks (16 000 samples per
 // channel), MWI K = 50, kurtogram depth 6, an FRF set of 8001 bins (0..4000 Hz every 0.5 Hz);
-// variants with 18 channels and with 65 536-sample blocks, and with order tracking on. Also
+// variants with 18 channels and with 65 536-sample blocks; tracking 0 (defaults: localisation
+// tracking), 1 (order tracking of every average), 2 (none); drift 1: the speed moves by
+// +/- 0.3 % within the block, so the machine is tracked (counter `tracked` = 1). Also
 // the cost of making the machine ready: Create + Prepare (per-bin operators, plans, buffers).
 // Run: ./build/tests/bench/bench_reference
 //
@@ -68,7 +70,9 @@ FrfSet ReferenceFrfSet(int channels, int paths) {
   return set;
 }
 
-AccelBlock ReferenceBlock(const FrfSet& set, std::uint32_t n) {
+// drift: the speed moves by +/- 0.3 % within the block (a sine over the block), so the
+// per-machine tracking decision tracks it and the tracked averages are paid for.
+AccelBlock ReferenceBlock(const FrfSet& set, std::uint32_t n, bool drift) {
   AccelBlock b;
   b.machine_id = "ref";
   b.sample_rate_hz = kFs;
@@ -84,9 +88,13 @@ AccelBlock ReferenceBlock(const FrfSet& set, std::uint32_t n) {
   std::mt19937_64 rng(7);
   std::normal_distribution<double> noise(0.0, 0.05);
   b.samples.resize(b.channels.size() * n);
+  const double period = n / kFs;
   for (std::size_t c = 0; c < b.channels.size(); ++c) {
     for (std::uint32_t i = 0; i < n; ++i) {
-      const double t = i / kFs;
+      // Time at constant speed that gives the same shaft angle (integral of the speed ratio).
+      const double t = i / kFs - (drift ? 0.003 * period / (2.0 * std::numbers::pi) *
+                                              std::cos(2.0 * std::numbers::pi * i / kFs / period)
+                                        : 0.0);
       // Mesh 1 at 280 Hz modulated at 7 Hz, mesh 2 at 238 Hz: Table 1 at 600 r/min.
       const double v = (1.0 + 0.2 * std::cos(2.0 * std::numbers::pi * 7.0 * t)) *
                            std::cos(2.0 * std::numbers::pi * 280.0 * t + 0.3 * c) +
@@ -97,7 +105,9 @@ AccelBlock ReferenceBlock(const FrfSet& set, std::uint32_t n) {
   return b;
 }
 
-MachineSetup ReferenceSetup(int channels, bool order_tracking) {
+// tracking: 0 = the defaults (localisation tracking only), 1 = order tracking of every
+// average, 2 = none.
+MachineSetup ReferenceSetup(int channels, int tracking) {
   MachineSetup setup;
   setup.machine_id = "ref";
   setup.frf_set = ReferenceFrfSet(channels, 12);
@@ -106,17 +116,18 @@ MachineSetup ReferenceSetup(int channels, bool order_tracking) {
   setup.options.nominal_speed_hz = kSpeedHz;
   setup.options.identification.iterations = 50;
   setup.options.kurtogram_max_level = 6;
-  setup.options.order_tracking = order_tracking;
+  setup.options.order_tracking = tracking == 1;
+  setup.options.localisation_tracking = tracking == 0;
   setup.options.max_samples_per_channel = 1u << 17;
   return setup;
 }
 
-// Args: channels, samples per channel, order tracking.
+// Args: channels, samples per channel, tracking (ReferenceSetup), drift (ReferenceBlock).
 void BM_ReferenceBlock(benchmark::State& state) {
   const auto channels = static_cast<int>(state.range(0));
   const auto n = static_cast<std::uint32_t>(state.range(1));
-  MachineSetup setup = ReferenceSetup(channels, state.range(2) != 0);
-  AccelBlock block = ReferenceBlock(setup.frf_set, n);
+  MachineSetup setup = ReferenceSetup(channels, static_cast<int>(state.range(2)));
+  AccelBlock block = ReferenceBlock(setup.frf_set, n, state.range(3) != 0);
   auto processor = BlockProcessor::Create(std::move(setup));
   if (!processor.ok()) {
     state.SkipWithError(processor.error().c_str());
@@ -139,18 +150,22 @@ void BM_ReferenceBlock(benchmark::State& state) {
     benchmark::DoNotOptimize(o.reason);
   }
   state.counters["block_s"] = static_cast<double>(n) / kFs;
+  // The machine's tracking decision (-1 undecided, 0 constant speed, 1 tracked).
+  state.counters["tracked"] = processor->ExportLearnedState().order_tracking_mode;
 }
 BENCHMARK(BM_ReferenceBlock)
-    ->ArgNames({"channels", "samples", "tracking"})
-    ->Args({12, 16000, 0})
-    ->Args({12, 16000, 1})
-    ->Args({18, 16000, 0})
-    ->Args({12, 65536, 0})
+    ->ArgNames({"channels", "samples", "tracking", "drift"})
+    ->Args({12, 16000, 0, 0})
+    ->Args({12, 16000, 2, 0})
+    ->Args({12, 16000, 0, 1})
+    ->Args({12, 16000, 1, 1})
+    ->Args({18, 16000, 0, 0})
+    ->Args({12, 65536, 0, 0})
     ->Unit(benchmark::kMillisecond);
 
 // Create + Prepare of the reference machine (the precompute before READY=1).
 void BM_ReferencePrecompute(benchmark::State& state) {
-  const MachineSetup setup = ReferenceSetup(12, false);
+  const MachineSetup setup = ReferenceSetup(12, 0);
   for (auto _ : state) {
     auto processor = BlockProcessor::Create(setup);
     if (!processor.ok()) {

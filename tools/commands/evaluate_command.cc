@@ -34,6 +34,7 @@ struct EvaluateArgs {
   bool list = false;
   bool quiet = false;
   bool order_tracking = false;
+  bool no_localisation_tracking = false;
   std::string dump_blocks_path;
 };
 
@@ -119,6 +120,7 @@ int RunEvaluate(const EvaluateArgs& args) {
   const bool quiet = args.quiet;
   RunnerOptions runner;
   runner.order_tracking = args.order_tracking;
+  runner.localisation_tracking = !args.no_localisation_tracking;
   std::ofstream dump;
   std::mutex dump_mutex;
   if (!args.dump_blocks_path.empty()) {
@@ -202,6 +204,8 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
                   "and condition indicators with their z), for studying the indicators");
   cmd->add_flag("--order-tracking", args->order_tracking,
                 "run the machines with analysis.speed.order_tracking on (default off)");
+  cmd->add_flag("--no-localisation-tracking", args->no_localisation_tracking,
+                "run the machines with analysis.speed.localisation_tracking off (default on)");
   cmd->callback([args, &exit_code] { exit_code = RunEvaluate(*args); });
 }
 

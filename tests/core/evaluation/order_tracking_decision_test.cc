@@ -1,7 +1,7 @@
 // The per-machine order-tracking decision (condition_indicator_stage.h) on a plant of the
 // evaluation families: a machine whose speed drifts within each block is tracked, one at
 // constant speed is not, the decision is kept in the learned state, and a machine with order
-// tracking off never decides.
+// tracking off never decides; localisation tracking alone decides the same way.
 #include <gtest/gtest.h>
 
 #include <utility>
@@ -21,7 +21,7 @@ struct Machine {
 };
 
 // A healthy Table-1 lumped plant at 600 r/min, 2 % noise, with or without +/- 0.3 % drift.
-Machine MakeMachine(bool drift, bool order_tracking) {
+Machine MakeMachine(bool drift, bool order_tracking, bool localisation_tracking = false) {
   Result<Plant> plant = MakePlant({PlantFamily::kLumpedPerturbed, TrainVariant::kTable1,
                                    ChannelSet::kSeats, 11});
   EXPECT_TRUE(plant.ok()) << plant.error();
@@ -44,6 +44,7 @@ Machine MakeMachine(bool drift, bool order_tracking) {
   setup.train = TrainLayoutFromGearTrain(plant->train).value();
   setup.options.sample_rate_hz = sc.sample_rate_hz;
   setup.options.order_tracking = order_tracking;
+  setup.options.localisation_tracking = localisation_tracking;
   Result<BlockProcessor> processor = BlockProcessor::Create(std::move(setup));
   EXPECT_TRUE(processor.ok()) << processor.error();
   return {std::move(sim).value(), std::move(processor).value()};
@@ -80,6 +81,14 @@ TEST(OrderTrackingDecision, AConstantSpeedMachineIsNotTracked) {
 TEST(OrderTrackingDecision, TrackingOffNeverDecides) {
   Machine m = MakeMachine(/*drift=*/true, /*order_tracking=*/false);
   EXPECT_EQ(ModeAfterBlocks(m, 2), -1);
+}
+
+// Localisation tracking alone (the default) takes the same per-machine decision.
+TEST(OrderTrackingDecision, LocalisationTrackingDecidesLikeOrderTracking) {
+  Machine drifting = MakeMachine(/*drift=*/true, /*order_tracking=*/false, true);
+  EXPECT_EQ(ModeAfterBlocks(drifting, 2), 1);
+  Machine steady = MakeMachine(/*drift=*/false, /*order_tracking=*/false, true);
+  EXPECT_EQ(ModeAfterBlocks(steady, 2), 0);
 }
 
 }  // namespace
