@@ -4,10 +4,26 @@
 // the detection, are the same either way.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "core/diagnosis/train_layout.h"
 #include "core/evaluation/evaluation_runner.h"
+#include "core/evaluation/plant_family.h"
+#include "core/evaluation/plant_simulator.h"
 #include "core/evaluation/scenario_matrix.h"
+#include "core/pipeline/block_processor.h"
+#include "tests/core/counting_operator_new.h"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void counting_new::OnAllocation() noexcept {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+}
 
 namespace gearpath {
 namespace {
@@ -72,6 +88,55 @@ TEST(LocalisationTracking, ChangesNothingAtConstantSpeed) {
     EXPECT_EQ(tracked.verdicts[i].shaft, constant.verdicts[i].shaft) << "block " << i;
   }
   EXPECT_TRUE(tracked.score.right_gear);
+}
+
+// The tracked averages reuse plans and buffers made at configuration: a tracked block of a
+// learned, alarming machine allocates nothing (DESIGN.md: hot paths allocate nothing).
+TEST(LocalisationTracking, ATrackedBlockAllocatesNothing) {
+  Result<Plant> plant = MakePlant({PlantFamily::kLumpedPerturbed, TrainVariant::kTable1,
+                                   ChannelSet::kSeats, 11});
+  ASSERT_TRUE(plant.ok()) << plant.error();
+  PlantExcitationConfig ex;
+  ex.fault = PlantFaultKind::kTePulse;
+  ex.faulty_gear = "G1";
+  ex.seed = 11;
+  Result<PlantExcitation> excitation = PlantExcitation::Create(plant->train, ex);
+  ASSERT_TRUE(excitation.ok()) << excitation.error();
+  PlantSimulatorConfig sc;
+  sc.machine_id = "drift";
+  sc.input_speed_hz = 10.0;
+  sc.noise_relative = 0.02;
+  sc.speed_drift = true;
+  sc.seed = 11;
+  Result<PlantSimulator> sim =
+      PlantSimulator::Create(plant->dynamics, plant->channels, std::move(excitation).value(), sc);
+  ASSERT_TRUE(sim.ok()) << sim.error();
+  MachineSetup setup;
+  setup.machine_id = "drift";
+  setup.frf_set = plant->model_frf;
+  setup.train = TrainLayoutFromGearTrain(plant->train).value();
+  setup.options.sample_rate_hz = sc.sample_rate_hz;
+  ASSERT_TRUE(setup.options.localisation_tracking);  // the default
+  Result<BlockProcessor> processor = BlockProcessor::Create(std::move(setup));
+  ASSERT_TRUE(processor.ok()) << processor.error();
+  AccelBlock block;
+  BlockResult result;
+  for (int b = 0; b < kBaselineBlocks + 3; ++b) {
+    sim->NextBlock(b >= kBaselineBlocks, block);
+    ASSERT_TRUE(processor->Process(block.view(), result).accepted());
+  }
+  ASSERT_EQ(processor->ExportLearnedState().order_tracking_mode, 1);  // tracked
+  sim->NextBlock(true, block);
+  const long probe = g_allocations.load();
+  std::vector<double>* seen = new std::vector<double>(4);  // the counter sees allocations
+  delete seen;
+  ASSERT_GT(g_allocations.load(), probe);
+  const long before = g_allocations.load();
+  const ProcessOutcome o = processor->Process(block.view(), result);
+  const long after = g_allocations.load();
+  EXPECT_TRUE(o.accepted());
+  EXPECT_GT(result.score.limit_z, 0.0);
+  EXPECT_EQ(after - before, 0);
 }
 
 }  // namespace
