@@ -96,9 +96,10 @@ AccelBlock ReferenceBlock(const FrfSet& set, std::uint32_t n, bool drift) {
                                               std::cos(2.0 * std::numbers::pi * i / kFs / period)
                                         : 0.0);
       // Mesh 1 at 280 Hz modulated at 7 Hz, mesh 2 at 238 Hz: Table 1 at 600 r/min.
+      const double phase = static_cast<double>(c);
       const double v = (1.0 + 0.2 * std::cos(2.0 * std::numbers::pi * 7.0 * t)) *
-                           std::cos(2.0 * std::numbers::pi * 280.0 * t + 0.3 * c) +
-                       0.6 * std::cos(2.0 * std::numbers::pi * 238.0 * t + 0.7 * c);
+                           std::cos(2.0 * std::numbers::pi * 280.0 * t + 0.3 * phase) +
+                       0.6 * std::cos(2.0 * std::numbers::pi * 238.0 * t + 0.7 * phase);
       b.samples[c * n + i] = static_cast<float>(v + noise(rng));
     }
   }
