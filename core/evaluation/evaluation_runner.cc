@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "core/evaluation/plant_family.h"
+#include "core/frf/identity_frf_set.h"
 #include "core/evaluation/plant_simulator.h"
 #include "core/pipeline/block_processor.h"
 
@@ -76,6 +77,19 @@ double SeverityScaleForRmsChange(PlantSimulator& sim, std::int64_t first_sample,
   return best;
 }
 
+// The identity FRF set for the plant's channels: a seat channel (one per bearing, in bearing
+// order, as the plant families make them) near its bearing's gears, any other near every gear.
+Result<FrfSet> IdentityFrfFor(const Plant& plant) {
+  std::vector<std::string> every_gear;
+  for (const GearSpec& g : plant.train.gears) every_gear.push_back(g.name);
+  std::vector<std::vector<std::string>> near;
+  for (std::size_t c = 0; c < plant.model_frf.channels.size(); ++c) {
+    near.push_back(c < plant.model_frf.paths.size() ? plant.model_frf.paths[c].gears : every_gear);
+  }
+  return MakeIdentityFrfSet(plant.model_frf.channels, near,
+                            plant.model_frf.decoupled.frequency_hz);
+}
+
 Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   ScenarioOutcome outcome;
   outcome.scenario = sc;
@@ -116,7 +130,13 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
 
   MachineSetup setup;
   setup.machine_id = sim_config.machine_id;
-  setup.frf_set = plant->model_frf;
+  if (options.identity_frf) {
+    Result<FrfSet> identity = IdentityFrfFor(*plant);
+    if (!identity) return Error{"identity FRF set: " + identity.error()};
+    setup.frf_set = std::move(identity).value();
+  } else {
+    setup.frf_set = plant->model_frf;
+  }
   setup.train = *layout;
   setup.options.sample_rate_hz = options.sample_rate_hz;
   setup.options.order_tracking = options.order_tracking;

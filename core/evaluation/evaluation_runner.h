@@ -1,7 +1,8 @@
 // Evaluation runner: one scenario end to end through the daemon's per-block engine
 // (gearpath::BlockProcessor, no DDS), and its score.
 //
-// A scenario's machine: MachineSetup{machine id, the plant's MODEL FRF set, the train layout
+// A scenario's machine: MachineSetup{machine id, the plant's MODEL FRF set (or the identity set,
+// RunnerOptions::identity_frf), the train layout
 // (TrainLayoutFromGearTrain), DEFAULT AnalysisOptions except sample_rate_hz = 8 kHz}; blocks
 // of 8192 samples carry the (mean) input speed. The plant simulator streams kBaselineBlocks
 // (20) healthy blocks, which the processor learns its baseline from, then kEvaluationBlocks
@@ -58,6 +59,10 @@ struct RunnerOptions {
   double target_rms_change = 0.03;  // <= 0: keep the default severities
   bool order_tracking = false;      // AnalysisOptions::order_tracking of every machine
   bool localisation_tracking = true;  // AnalysisOptions::localisation_tracking
+  // Give the machine the identity FRF set (core/frf/identity_frf_set.h: every sensor its own
+  // path, the configuration before the hammer test) instead of the plant's model FRFs. A seat
+  // sensor sits near its bearing's gears, the housing sensor near every gear.
+  bool identity_frf = false;
   // Optional: called after every processed block (baseline and evaluation) with the block's
   // index (0-based; evaluation blocks from baseline_blocks on) and its result, on the
   // scenario's worker thread (the callee serialises). For analysts studying the indicators.

@@ -35,6 +35,7 @@ struct EvaluateArgs {
   bool quiet = false;
   bool order_tracking = false;
   bool no_localisation_tracking = false;
+  std::string frf = "model";
   std::string dump_blocks_path;
 };
 
@@ -121,6 +122,12 @@ int RunEvaluate(const EvaluateArgs& args) {
   RunnerOptions runner;
   runner.order_tracking = args.order_tracking;
   runner.localisation_tracking = !args.no_localisation_tracking;
+  if (args.frf != "model" && args.frf != "identity") {
+    std::fprintf(stderr, "gearpath evaluate: --frf must be model or identity, got '%s'\n",
+                 args.frf.c_str());
+    return kExitBadInput;
+  }
+  runner.identity_frf = args.frf == "identity";
   std::ofstream dump;
   std::mutex dump_mutex;
   if (!args.dump_blocks_path.empty()) {
@@ -204,6 +211,10 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
                   "and condition indicators with their z), for studying the indicators");
   cmd->add_flag("--order-tracking", args->order_tracking,
                 "run the machines with analysis.speed.order_tracking on (default off)");
+  cmd->add_option("--frf", args->frf,
+                  "FRF set given to the machines: model (the plant's model FRFs) or identity "
+                  "(each sensor its own path: monitoring before the hammer test)")
+      ->capture_default_str();
   cmd->add_flag("--no-localisation-tracking", args->no_localisation_tracking,
                 "run the machines with analysis.speed.localisation_tracking off (default on)");
   cmd->callback([args, &exit_code] { exit_code = RunEvaluate(*args); });

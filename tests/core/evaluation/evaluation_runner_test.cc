@@ -80,6 +80,30 @@ TEST(EvaluationRunner, ObserverSeesEveryBlockWithTheRecordedVerdicts) {
   }
 }
 
+// The identity FRF set (monitoring before the hammer test) runs the same scenario: every
+// sensor its own path, so the path contributions are the measured channels, the fault is still
+// found (the scores rest on the measured channels) and blamed on G1's shaft.
+TEST(EvaluationRunner, RunsAScenarioWithTheIdentityFrfSet) {
+  const Scenario s = TePulseOnG1();
+  RunnerOptions options;
+  options.identity_frf = true;
+  std::vector<std::string> paths;
+  options.observe = [&](const Scenario&, int block, const BlockResult& r) {
+    if (block != 0) return;
+    for (const BlockPathShare& p : r.paths) paths.emplace_back(p.name);
+  };
+  const ScenarioOutcome o = RunScenario(s, options);
+  ASSERT_TRUE(o.error.empty()) << o.error;
+  // The plant's channels p1..p3 (seats, axis x) are the paths.
+  EXPECT_EQ(paths, (std::vector<std::string>{"p1/x", "p2/x", "p3/x"}));
+  EXPECT_TRUE(o.score.detected);
+  for (const BlockVerdictRecord& v : o.verdicts) {
+    if (v.state == FaultState::kSuspected || v.state == FaultState::kAlarm) {
+      EXPECT_EQ(v.shaft, "input");
+    }
+  }
+}
+
 TEST(EvaluationRunner, ReportsAScenarioThatCannotRun) {
   Scenario s = TePulseOnG1();
   s.gear = "G7";
