@@ -45,3 +45,25 @@ function(gearpath_module_tests name)
                        PROPERTIES TIMEOUT ${ARG_TIMEOUT}
                        WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 endfunction()
+
+# gearpath_numpy_python(<var>): sets <var> (in the caller's scope) to a python3 that can import
+# numpy, or to "" when there is none. /usr/bin/python3 first: Debian's interpreter has numpy
+# once python3-numpy is installed (tools/install-deps.sh), while the first python3 on PATH may
+# be another one without it. Cached in GEARPATH_NUMPY_PYTHON once found.
+function(gearpath_numpy_python out)
+  if(NOT GEARPATH_NUMPY_PYTHON)  # an earlier miss is looked for again
+    set(found "")
+    find_program(GEARPATH_PYTHON3_ON_PATH python3)
+    foreach(candidate /usr/bin/python3 ${GEARPATH_PYTHON3_ON_PATH})
+      if(NOT found AND EXISTS "${candidate}")
+        execute_process(COMMAND "${candidate}" -c "import numpy" RESULT_VARIABLE numpy_missing
+                        OUTPUT_QUIET ERROR_QUIET)
+        if(numpy_missing EQUAL 0)
+          set(found "${candidate}")
+        endif()
+      endif()
+    endforeach()
+    set(GEARPATH_NUMPY_PYTHON "${found}" CACHE INTERNAL "python3 with numpy, for the tests")
+  endif()
+  set(${out} "${GEARPATH_NUMPY_PYTHON}" PARENT_SCOPE)
+endfunction()

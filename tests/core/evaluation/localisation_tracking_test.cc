@@ -9,13 +9,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/diagnosis/train_layout.h"
 #include "core/evaluation/evaluation_runner.h"
-#include "core/evaluation/plant_family.h"
-#include "core/evaluation/plant_simulator.h"
 #include "core/evaluation/scenario_matrix.h"
-#include "core/pipeline/block_processor.h"
 #include "tests/core/counting_operator_new.h"
+#include "tests/core/evaluation/drifting_machine.h"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -93,32 +90,12 @@ TEST(LocalisationTracking, ChangesNothingAtConstantSpeed) {
 // The tracked averages reuse plans and buffers made at configuration: a tracked block of a
 // learned, alarming machine allocates nothing (DESIGN.md: hot paths allocate nothing).
 TEST(LocalisationTracking, ATrackedBlockAllocatesNothing) {
-  Result<Plant> plant = MakePlant({PlantFamily::kLumpedPerturbed, TrainVariant::kTable1,
-                                   ChannelSet::kSeats, 11});
-  ASSERT_TRUE(plant.ok()) << plant.error();
-  PlantExcitationConfig ex;
-  ex.fault = PlantFaultKind::kTePulse;
-  ex.faulty_gear = "G1";
-  ex.seed = 11;
-  Result<PlantExcitation> excitation = PlantExcitation::Create(plant->train, ex);
-  ASSERT_TRUE(excitation.ok()) << excitation.error();
-  PlantSimulatorConfig sc;
-  sc.machine_id = "drift";
-  sc.input_speed_hz = 10.0;
-  sc.noise_relative = 0.02;
-  sc.speed_drift = true;
-  sc.seed = 11;
-  Result<PlantSimulator> sim =
-      PlantSimulator::Create(plant->dynamics, plant->channels, std::move(excitation).value(), sc);
-  ASSERT_TRUE(sim.ok()) << sim.error();
-  MachineSetup setup;
-  setup.machine_id = "drift";
-  setup.frf_set = plant->model_frf;
-  setup.train = TrainLayoutFromGearTrain(plant->train).value();
-  setup.options.sample_rate_hz = sc.sample_rate_hz;
-  ASSERT_TRUE(setup.options.localisation_tracking);  // the default
-  Result<BlockProcessor> processor = BlockProcessor::Create(std::move(setup));
-  ASSERT_TRUE(processor.ok()) << processor.error();
+  AnalysisOptions defaults;
+  ASSERT_TRUE(defaults.localisation_tracking);  // the default
+  testing::DriftingMachine m =
+      testing::MakeDriftingMachine(/*drift=*/true, defaults, PlantFaultKind::kTePulse, "G1");
+  PlantSimulator* sim = &m.sim;
+  BlockProcessor* processor = &m.processor;
   AccelBlock block;
   BlockResult result;
   for (int b = 0; b < kBaselineBlocks + 3; ++b) {

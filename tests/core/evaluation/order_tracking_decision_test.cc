@@ -6,48 +6,19 @@
 
 #include <utility>
 
-#include "core/diagnosis/train_layout.h"
-#include "core/evaluation/plant_excitation.h"
-#include "core/evaluation/plant_family.h"
-#include "core/evaluation/plant_simulator.h"
-#include "core/pipeline/block_processor.h"
+#include "tests/core/evaluation/drifting_machine.h"
 
 namespace gearpath {
 namespace {
 
-struct Machine {
-  PlantSimulator sim;
-  BlockProcessor processor;
-};
+using Machine = testing::DriftingMachine;
 
-// A healthy Table-1 lumped plant at 600 r/min, 2 % noise, with or without +/- 0.3 % drift.
+// A healthy machine with or without drift, order tracking and localisation tracking as given.
 Machine MakeMachine(bool drift, bool order_tracking, bool localisation_tracking = false) {
-  Result<Plant> plant = MakePlant({PlantFamily::kLumpedPerturbed, TrainVariant::kTable1,
-                                   ChannelSet::kSeats, 11});
-  EXPECT_TRUE(plant.ok()) << plant.error();
-  PlantExcitationConfig ex;
-  ex.seed = 11;
-  Result<PlantExcitation> excitation = PlantExcitation::Create(plant->train, ex);
-  EXPECT_TRUE(excitation.ok()) << excitation.error();
-  PlantSimulatorConfig sc;
-  sc.machine_id = "drift";
-  sc.input_speed_hz = 10.0;
-  sc.noise_relative = 0.02;
-  sc.speed_drift = drift;
-  sc.seed = 11;
-  Result<PlantSimulator> sim =
-      PlantSimulator::Create(plant->dynamics, plant->channels, std::move(excitation).value(), sc);
-  EXPECT_TRUE(sim.ok()) << sim.error();
-  MachineSetup setup;
-  setup.machine_id = "drift";
-  setup.frf_set = plant->model_frf;
-  setup.train = TrainLayoutFromGearTrain(plant->train).value();
-  setup.options.sample_rate_hz = sc.sample_rate_hz;
-  setup.options.order_tracking = order_tracking;
-  setup.options.localisation_tracking = localisation_tracking;
-  Result<BlockProcessor> processor = BlockProcessor::Create(std::move(setup));
-  EXPECT_TRUE(processor.ok()) << processor.error();
-  return {std::move(sim).value(), std::move(processor).value()};
+  AnalysisOptions o;
+  o.order_tracking = order_tracking;
+  o.localisation_tracking = localisation_tracking;
+  return testing::MakeDriftingMachine(drift, o);
 }
 
 int ModeAfterBlocks(Machine& m, int blocks) {
