@@ -7,8 +7,9 @@
 //   least squares (minimum norm): phi = 1 if sigma > cutoff, else 0;
 //   Tikhonov (seed Eqs. 27-28):   phi = sigma^2 / (sigma^2 + lambda);
 //   MWI, K steps from f_0 = 0 (seed Eqs. 40-43): phi = 1 - (alpha / (sigma^2 + alpha))^K.
-// The derivation of the MWI form is in mwi.h. Working from the SVD of B never forms H^H H,
-// whose condition number is the square of H's.
+// The derivation of the MWI form is in mwi.h. Working from the SVD of B never solves with
+// H^H H, whose condition number is the square of H's (the SVD forms B^H B only to choose its
+// starting basis; the singular values and vectors come from B itself, small_svd.h).
 #pragma once
 
 #include <Eigen/Dense>
