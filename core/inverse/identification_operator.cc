@@ -5,7 +5,9 @@
 #include <string>
 #include <utility>
 
+#include "core/inverse/condition_number.h"
 #include "core/inverse/least_squares.h"
+#include "core/inverse/small_svd.h"
 #include "core/inverse/validation.h"
 
 namespace gearpath {
@@ -13,15 +15,9 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-double ConditionNumber(const Eigen::VectorXd& sigma) {
-  if (sigma.size() == 0 || !(sigma(0) > 0.0)) return kInfinity;
-  const double smallest = sigma(sigma.size() - 1);
-  return smallest > 0.0 ? sigma(0) / smallest : kInfinity;
-}
-
-// Eq. 40 with the zero-column convention of the header (weight 0: force unobservable).
-Eigen::VectorXd WeightsOrZero(const Eigen::MatrixXcd& h) {
-  const Eigen::MatrixXcd a = h.adjoint() * h;
+// Eq. 40 with the zero-column convention of the header (weight 0: force unobservable);
+// a = H^H H.
+Eigen::VectorXd WeightsOrZero(const Eigen::MatrixXcd& a) {
   Eigen::VectorXd w(a.rows());
   for (Eigen::Index i = 0; i < a.rows(); ++i) {
     const double norm = a.row(i).norm();
@@ -103,6 +99,19 @@ Result<IdentificationOperator> IdentificationOperator::Create(
   }
   const Eigen::Index m = frf.at.front().rows();
   const Eigen::Index n = frf.at.front().cols();
+  // Every bin is checked before any is decomposed, so the error names the first bad bin.
+  for (Eigen::Index k = 0; k < frf.bins(); ++k) {
+    const Eigen::MatrixXcd& h = frf.at[static_cast<std::size_t>(k)];
+    // The bin's name is formatted only for the message (8001 names would cost milliseconds).
+    if (h.size() == 0 || !h.allFinite()) {
+      if (Status s = ValidateOperator(h, BinName(frf, k)); !s) return Error{s.error()};
+    }
+    if (h.rows() != m || h.cols() != n) {
+      return Error{BinName(frf, k) + ": shape " + std::to_string(h.rows()) + " x " +
+                   std::to_string(h.cols()) + " differs from the first bin's " +
+                   std::to_string(m) + " x " + std::to_string(n)};
+    }
+  }
   IdentificationOperator op;
   op.options_ = options;
   op.channels_ = m;
@@ -111,58 +120,7 @@ Result<IdentificationOperator> IdentificationOperator::Create(
   op.precomputed_ = options.method == InverseMethod::kLeastSquares ||
                     rule == RegularisationRule::kFixed || rule == RegularisationRule::kNoiseFloor;
   op.bins_.reserve(frf.at.size());
-  for (Eigen::Index k = 0; k < frf.bins(); ++k) {
-    const Eigen::MatrixXcd& h = frf.at[k];
-    if (Status s = ValidateOperator(h, BinName(frf, k)); !s) return Error{s.error()};
-    if (h.rows() != m || h.cols() != n) {
-      return Error{BinName(frf, k) + ": shape " + std::to_string(h.rows()) + " x " +
-                   std::to_string(h.cols()) + " differs from the first bin's " +
-                   std::to_string(m) + " x " + std::to_string(n)};
-    }
-    Bin bin;
-    bin.h = h;
-    const Eigen::VectorXd sigma_h = Eigen::JacobiSVD<Eigen::MatrixXcd>(h).singularValues();
-    bin.condition_h = ConditionNumber(sigma_h);
-    const Eigen::VectorXd scale = options.method == InverseMethod::kMwi
-                                      ? Eigen::VectorXd(WeightsOrZero(h).cwiseSqrt())
-                                      : Eigen::VectorXd::Ones(n);
-    bin.svd = DecomposeScaled(h, scale);
-    bin.condition_weighted = options.method == InverseMethod::kMwi
-                                 ? ConditionNumber(bin.svd.sigma)
-                                 : bin.condition_h;
-    const double sigma_max = bin.svd.sigma.size() > 0 ? bin.svd.sigma(0) : 0.0;
-    const double cutoff = options.method == InverseMethod::kLeastSquares
-                              ? LeastSquaresCutoff(sigma_max, m, n, options.rank_tolerance)
-                              : DefaultRankCutoff(sigma_max, m, n);
-    bin.rank = (bin.svd.sigma.array() > cutoff).count();
-    if (!(sigma_max > 0.0)) {
-      bin.outcome = RuleOutcome::kZeroOperator;
-      bin.parameter = options.method == InverseMethod::kLeastSquares ? 0.0 : kInfinity;
-    } else if (options.method == InverseMethod::kLeastSquares) {
-      bin.outcome = RuleOutcome::kNoParameter;
-    } else if (rule == RegularisationRule::kFixed) {
-      bin.parameter = options.regularisation.parameter;
-    } else if (rule == RegularisationRule::kNoiseFloor ||
-               (rule == RegularisationRule::kGcv && m <= bin.rank)) {
-      bin.parameter = NoiseFloorParameter(options.method, sigma_max,
-                                          options.regularisation.relative_noise,
-                                          options.iterations);
-      if (rule == RegularisationRule::kGcv) bin.outcome = RuleOutcome::kGcvFellBackToNoiseFloor;
-    }
-    if (op.precomputed_ || bin.outcome == RuleOutcome::kGcvFellBackToNoiseFloor) {
-      // G = D V diag(phi / sigma) U^H.
-      Eigen::VectorXd gain(bin.svd.sigma.size());
-      for (Eigen::Index i = 0; i < gain.size(); ++i) {
-        const double s = bin.svd.sigma(i);
-        const double phi = FilterFactor(options.method, s, bin.parameter, options.iterations,
-                                        cutoff);
-        gain(i) = phi > 0.0 ? phi / s : 0.0;
-      }
-      bin.g = bin.svd.column_scale.asDiagonal() * bin.svd.v * gain.asDiagonal() *
-              bin.svd.u.adjoint();
-    }
-    op.bins_.push_back(std::move(bin));
-  }
+  for (const Eigen::MatrixXcd& h : frf.at) op.bins_.push_back(BuildBin(h, options, op.precomputed_));
   const Eigen::Index r = std::min(m, n);
   op.beta_.resize(r);
   op.beta2_.resize(r);
@@ -170,6 +128,66 @@ Result<IdentificationOperator> IdentificationOperator::Create(
   op.channel_work_.resize(m);
   op.path_work_.resize(n);
   return op;
+}
+
+IdentificationOperator::Bin IdentificationOperator::BuildBin(
+    const Eigen::MatrixXcd& h, const IdentificationOptions& options, bool precomputed) {
+  const Eigen::Index m = h.rows();
+  const Eigen::Index n = h.cols();
+  const RegularisationRule rule = options.regularisation.rule;
+  const bool mwi = options.method == InverseMethod::kMwi;
+  Bin bin;
+  bin.h = h;
+  if (mwi) {
+    // MWI inverts B = H W^{1/2}, whose singular values are not H's. H^H H, formed anyway for
+    // the weights, gives H's condition number where its eigenvalues are accurate enough
+    // (condition_number.h); the SVD of B gives B's.
+    const Eigen::MatrixXcd gram = GramMatrix(h);
+    bin.svd = DecomposeScaled(h, WeightsOrZero(gram).cwiseSqrt());
+    bin.condition_weighted = ConditionFromSingularValues(bin.svd.sigma);
+    bin.condition_h = ConditionFromGram(h, gram);
+  } else {
+    // Tikhonov and least squares invert H itself: one SVD gives the condition number too.
+    bin.svd = DecomposeScaled(h, Eigen::VectorXd::Ones(n));
+    bin.condition_weighted = ConditionFromSingularValues(bin.svd.sigma);
+    bin.condition_h = bin.condition_weighted;
+  }
+  const double sigma_max = bin.svd.sigma.size() > 0 ? bin.svd.sigma(0) : 0.0;
+  const double cutoff = options.method == InverseMethod::kLeastSquares
+                            ? LeastSquaresCutoff(sigma_max, m, n, options.rank_tolerance)
+                            : DefaultRankCutoff(sigma_max, m, n);
+  bin.rank = (bin.svd.sigma.array() > cutoff).count();
+  if (!(sigma_max > 0.0)) {
+    bin.outcome = RuleOutcome::kZeroOperator;
+    bin.parameter = options.method == InverseMethod::kLeastSquares ? 0.0 : kInfinity;
+  } else if (options.method == InverseMethod::kLeastSquares) {
+    bin.outcome = RuleOutcome::kNoParameter;
+  } else if (rule == RegularisationRule::kFixed) {
+    bin.parameter = options.regularisation.parameter;
+  } else if (rule == RegularisationRule::kNoiseFloor ||
+             (rule == RegularisationRule::kGcv && m <= bin.rank)) {
+    bin.parameter = NoiseFloorParameter(options.method, sigma_max,
+                                        options.regularisation.relative_noise,
+                                        options.iterations);
+    if (rule == RegularisationRule::kGcv) bin.outcome = RuleOutcome::kGcvFellBackToNoiseFloor;
+  }
+  if (precomputed || bin.outcome == RuleOutcome::kGcvFellBackToNoiseFloor) {
+    // G = D V diag(phi / sigma) U^H.
+    Eigen::VectorXd gain(bin.svd.sigma.size());
+    for (Eigen::Index i = 0; i < gain.size(); ++i) {
+      const double s = bin.svd.sigma(i);
+      const double phi = FilterFactor(options.method, s, bin.parameter, options.iterations,
+                                      cutoff);
+      gain(i) = phi > 0.0 ? phi / s : 0.0;
+    }
+    bin.g = bin.svd.column_scale.asDiagonal() * bin.svd.v * gain.asDiagonal() *
+            bin.svd.u.adjoint();
+    // Identify uses g alone from here on; U and V would only hold memory (2 x 2.3 kB per
+    // 12 x 12 bin). sigma stays for the figures.
+    bin.svd.u.resize(0, 0);
+    bin.svd.v.resize(0, 0);
+  }
+  return bin;
 }
 
 BinFigures IdentificationOperator::StaticFigures(Eigen::Index bin) const {

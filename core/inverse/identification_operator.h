@@ -5,7 +5,8 @@
 // Per bin k the model is x = H_k F (seed Sect. 2.3; x: channel responses, F: one force per
 // transfer path, H_k the decoupled FRF matrix, channels x paths, any shape). Configure, per
 // bin: the MWI weights W (Eq. 40), the thin SVD of the inverted operator B = H W^{1/2} (MWI)
-// or H (Tikhonov, least squares), the condition numbers and, when the parameter does not
+// or H (Tikhonov, least squares; this SVD also gives the condition number of H), the
+// condition numbers (MWI: H's from H^H H, condition_number.h) and, when the parameter does not
 // depend on x (rules kFixed and kNoiseFloor, and least squares), the complete operator
 // G_k = D V diag(phi/sigma) U^H (paths x channels), so a block costs one mat-vec per bin.
 // With kGcv or kDiscrepancy the parameter is chosen per block from U^H x (no allocation).
@@ -83,7 +84,7 @@ class IdentificationOperator {
  private:
   struct Bin {
     Eigen::MatrixXcd h;
-    ScaledSvd svd;
+    ScaledSvd svd;       // u and v are released where g is built (Identify uses g alone)
     Eigen::MatrixXcd g;  // paths x channels, only when precomputed_
     double parameter = 0.0;
     double condition_h = 0.0;
@@ -93,6 +94,10 @@ class IdentificationOperator {
   };
 
   IdentificationOperator() = default;
+  // Everything Create computes for one bin: one SVD of the inverted operator and, for MWI,
+  // H's condition number from H^H H. Depends on h and the options only.
+  static Bin BuildBin(const Eigen::MatrixXcd& h, const IdentificationOptions& options,
+                      bool precomputed);
   double ChooseParameter(const Bin& bin, double outside2, RuleOutcome* outcome) noexcept;
 
   IdentificationOptions options_;
