@@ -7,6 +7,7 @@
 
 #include "core/inverse/condition_number.h"
 #include "core/inverse/least_squares.h"
+#include "core/inverse/parallel_ranges.h"
 #include "core/inverse/small_svd.h"
 #include "core/inverse/validation.h"
 
@@ -14,6 +15,9 @@ namespace gearpath {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// A bin costs tens of microseconds, a thread start about as much as one bin: below this many
+// bins per thread the split is not worth it (and small test sets stay single-threaded).
+constexpr std::size_t kMinBinsPerThread = 32;
 
 // Eq. 40 with the zero-column convention of the header (weight 0: force unobservable);
 // a = H^H H.
@@ -90,7 +94,7 @@ Status ValidateIdentificationOptions(const IdentificationOptions& options) {
 }
 
 Result<IdentificationOperator> IdentificationOperator::Create(
-    const FrfMatrix& frf, const IdentificationOptions& options) {
+    const FrfMatrix& frf, const IdentificationOptions& options, unsigned threads) {
   if (Status s = ValidateIdentificationOptions(options); !s) return Error{s.error()};
   if (frf.at.empty()) return Error{"frf: FRF matrix has no frequency bins"};
   if (frf.frequency_hz.size() != static_cast<Eigen::Index>(frf.at.size())) {
@@ -119,8 +123,15 @@ Result<IdentificationOperator> IdentificationOperator::Create(
   const RegularisationRule rule = options.regularisation.rule;
   op.precomputed_ = options.method == InverseMethod::kLeastSquares ||
                     rule == RegularisationRule::kFixed || rule == RegularisationRule::kNoiseFloor;
-  op.bins_.reserve(frf.at.size());
-  for (const Eigen::MatrixXcd& h : frf.at) op.bins_.push_back(BuildBin(h, options, op.precomputed_));
+  op.bins_.resize(frf.at.size());
+  // Each bin depends on its own H only, so the split over threads cannot change any result.
+  ForEachRangeInParallel(
+      frf.at.size(), ThreadsForRanges(frf.at.size(), kMinBinsPerThread, threads),
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+          op.bins_[k] = BuildBin(frf.at[k], options, op.precomputed_);
+        }
+      });
   const Eigen::Index r = std::min(m, n);
   op.beta_.resize(r);
   op.beta2_.resize(r);

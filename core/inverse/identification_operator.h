@@ -56,9 +56,12 @@ std::string_view ToString(IdentifyStatus status) noexcept;
 class IdentificationOperator {
  public:
   // Validates the FRF matrix (non-empty, one matrix per frequency, equal shapes, finite) and
-  // the options; builds the per-bin factorisations.
+  // the options; builds the per-bin factorisations, split over `threads` threads (0: one per
+  // hardware thread; small sets use fewer). Every bin is built from its own H alone, so the
+  // operator is bit-identical for any thread count.
   static Result<IdentificationOperator> Create(const FrfMatrix& frf,
-                                               const IdentificationOptions& options);
+                                               const IdentificationOptions& options,
+                                               unsigned threads = 0);
 
   Eigen::Index bins() const noexcept { return static_cast<Eigen::Index>(bins_.size()); }
   Eigen::Index channels() const noexcept { return channels_; }

@@ -1,5 +1,6 @@
 // Per-block cost of bearing-force identification (IdentificationOperator), by rule: the
-// precomputed operator (noise_floor: one mat-vec per bin) against per-block GCV.
+// precomputed operator (noise_floor: one mat-vec per bin) against per-block GCV. And the
+// cost of building the operator (IdentificationOperator::Create) by thread count.
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -48,6 +49,21 @@ void BM_GcvPerBlock(benchmark::State& state) { IdentifyAllBins(state, Regularisa
 
 BENCHMARK(BM_NoiseFloorPrecomputed)->Args({3, 3})->Args({4, 3})->Args({18, 12});
 BENCHMARK(BM_GcvPerBlock)->Args({4, 3})->Args({18, 12});
+
+// The per-bin SVDs of an 8001-bin 12 x 12 set, MWI K = 50 (the reference workload's operator
+// alone, without the rest of BlockProcessor::Prepare). threads 0 = one per hardware thread.
+void BM_CreateOperator(benchmark::State& state) {
+  const FrfMatrix frf = RandomFrf(12, 12, 8001);
+  IdentificationOptions options;
+  options.iterations = 50;
+  const auto threads = static_cast<unsigned>(state.range(0));
+  for (auto _ : state) {
+    Result<IdentificationOperator> op = IdentificationOperator::Create(frf, options, threads);
+    benchmark::DoNotOptimize(op.ok());
+  }
+  state.SetItemsProcessed(state.iterations() * frf.bins());
+}
+BENCHMARK(BM_CreateOperator)->ArgName("threads")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace gearpath

@@ -183,5 +183,24 @@ TEST(IdentificationOperatorReference, IllConditionedBinsMatchTheJacobiSvdOperato
   }
 }
 
+TEST(IdentificationOperatorReference, OperatorsAreBitIdenticalForAnyThreadCount) {
+  const FrfMatrix frf = ModalFrf(12, 12, 200, 45);
+  for (const IdentificationOptions& o :
+       {NoiseFloor(InverseMethod::kMwi), NoiseFloor(InverseMethod::kLeastSquares)}) {
+    Result<IdentificationOperator> one = IdentificationOperator::Create(frf, o, 1);
+    Result<IdentificationOperator> three = IdentificationOperator::Create(frf, o, 3);
+    ASSERT_TRUE(one.ok() && three.ok());
+    for (Eigen::Index k = 0; k < frf.bins(); ++k) {
+      EXPECT_TRUE(OperatorOf(*one, k) == OperatorOf(*three, k)) << "bin " << k;
+      const BinFigures a = one->StaticFigures(k);
+      const BinFigures b = three->StaticFigures(k);
+      EXPECT_EQ(a.condition_h, b.condition_h) << k;
+      EXPECT_EQ(a.condition_weighted, b.condition_weighted) << k;
+      EXPECT_EQ(a.parameter, b.parameter) << k;
+      EXPECT_EQ(a.rank, b.rank) << k;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gearpath
