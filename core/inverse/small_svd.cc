@@ -65,10 +65,10 @@ void OrthogonaliseColumns(Eigen::MatrixXcd& w, Eigen::MatrixXcd* v) {
         // the real symmetric 2 x 2 Jacobi rotation (the smaller angle) zeroes it.
         const Complex phase(g.real() / abs_g, -g.imag() / abs_g);  // conj(g) / |g|
         const double zeta = (norm2(j) - norm2(i)) / (2.0 * abs_g);
-        const double t = std::abs(zeta) > kLargeZeta
-                             ? 0.5 / zeta
-                             : std::copysign(1.0, zeta) /
-                                   (std::abs(zeta) + std::sqrt(1.0 + zeta * zeta));
+        const double t =
+            std::abs(zeta) > kLargeZeta
+                ? 0.5 / zeta
+                : std::copysign(1.0, zeta) / (std::abs(zeta) + std::sqrt(1.0 + zeta * zeta));
         const double cs = 1.0 / std::sqrt(1.0 + t * t);
         const double sn = cs * t;
         RotateColumns(w, i, j, cs, sn, phase);
@@ -173,15 +173,14 @@ SmallSvd TallThinSvd(const Eigen::MatrixXcd& a) {
 }  // namespace
 
 Eigen::MatrixXcd GramMatrix(const Eigen::MatrixXcd& a) {
-  // Each entry a dot product of two contiguous columns: at these sizes about a third cheaper
+  // Each entry a dot product of two contiguous columns: at these sizes about a fifth cheaper
   // than Eigen's blocked product, which packs the conjugated transpose first.
   return a.adjoint().lazyProduct(a);
 }
 
 double PowerOfTwoScale(const Eigen::MatrixXcd& a) {
   if (a.size() == 0) return 0.0;
-  const double largest =
-      std::max(a.real().cwiseAbs().maxCoeff(), a.imag().cwiseAbs().maxCoeff());
+  const double largest = std::max(a.real().cwiseAbs().maxCoeff(), a.imag().cwiseAbs().maxCoeff());
   if (!(largest > 0.0)) return 0.0;
   int exponent = 0;
   std::frexp(largest, &exponent);
@@ -191,7 +190,8 @@ double PowerOfTwoScale(const Eigen::MatrixXcd& a) {
 SmallSvd ThinSvd(const Eigen::MatrixXcd& a) {
   if (a.size() == 0) {
     const Eigen::Index r = std::min(a.rows(), a.cols());
-    return SmallSvd{Eigen::MatrixXcd(a.rows(), r), Eigen::VectorXd(r), Eigen::MatrixXcd(a.cols(), r)};
+    return SmallSvd{Eigen::MatrixXcd(a.rows(), r), Eigen::VectorXd(r),
+                    Eigen::MatrixXcd(a.cols(), r)};
   }
   if (a.rows() >= a.cols()) return TallThinSvd(a);
   // A^H = U' S V'^H  =>  A = V' S U'^H.
@@ -209,7 +209,8 @@ Eigen::VectorXd SingularValues(const Eigen::MatrixXcd& a) {
   const Eigen::VectorXd norms = JacobiOnTall(tall, scale, w, nullptr);
   const std::vector<Eigen::Index> order = DescendingOrder(norms);
   Eigen::VectorXd sigma(norms.size());
-  for (Eigen::Index k = 0; k < sigma.size(); ++k) sigma(k) = norms(order[static_cast<std::size_t>(k)]);
+  for (Eigen::Index k = 0; k < sigma.size(); ++k)
+    sigma(k) = norms(order[static_cast<std::size_t>(k)]);
   return sigma;
 }
 

@@ -33,9 +33,8 @@ TEST(ConditionNumber, FromGramMatchesThePrescribedConditionOnBothRoutes) {
       // where the column spread applies (and the prescribed value without it, below).
       const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXcd>(a).singularValues();
       const double reference = sv(0) / sv(sv.size() - 1);
-      const double tolerance =
-          std::max(kGramConditionTolerance, 1e3 * std::numeric_limits<double>::epsilon() *
-                                                reference);
+      const double tolerance = std::max(kGramConditionTolerance,
+                                        1e3 * std::numeric_limits<double>::epsilon() * reference);
       EXPECT_NEAR(ConditionFromGram(a, a.adjoint() * a) / reference, 1.0, tolerance)
           << shape.rows << "x" << shape.cols << " condition " << reference;
       const Eigen::MatrixXcd plain = rnd.Conditioned(shape.rows, shape.cols, condition);

@@ -62,8 +62,9 @@ Reference ReferenceOperator(const Eigen::MatrixXcd& h, const IdentificationOptio
     const long double s2 = static_cast<long double>(s(i)) * s(i);
     const long double p = parameter;
     const long double phi = o.method == InverseMethod::kMwi ? 1.0L - std::pow(p / (s2 + p), k)
-                            : o.method == InverseMethod::kTikhonov ? s2 / (s2 + p)
-                                                                   : (s(i) > ls_cutoff ? 1.0L : 0.0L);
+                            : o.method == InverseMethod::kTikhonov
+                                ? s2 / (s2 + p)
+                                : (s(i) > ls_cutoff ? 1.0L : 0.0L);
     gain(i) = s(i) > 0.0 ? static_cast<double>(phi / s(i)) : 0.0;
   }
   Reference r;
@@ -107,7 +108,8 @@ FrfMatrix ModalFrf(Eigen::Index channels, Eigen::Index paths, int bins, unsigned
         for (int i = 0; i < 3; ++i) {
           const Eigen::Vector3d& mode = modes[static_cast<std::size_t>((c * paths + p) * 3 + i)];
           const double wn = 2.0 * std::numbers::pi * mode(0);
-          v += 1e-3 * mode(2) * w * w / std::complex<double>(wn * wn - w * w, 2.0 * mode(1) * wn * w);
+          v += 1e-3 * mode(2) * w * w /
+               std::complex<double>(wn * wn - w * w, 2.0 * mode(1) * wn * w);
         }
         h(c, p) = v;
       }
@@ -145,13 +147,11 @@ void ExpectMatchesReference(const FrfMatrix& frf, const std::string& name) {
       const Eigen::MatrixXcd& h = frf.at[static_cast<std::size_t>(k)];
       const Reference ref = ReferenceOperator(h, o);
       const std::string where = name + " " + std::string(ToString(method)) + " bin " +
-                                std::to_string(k) + " condition " +
-                                std::to_string(ref.condition_h);
+                                std::to_string(k) + " condition " + std::to_string(ref.condition_h);
       const double error = (OperatorOf(*op, k) - ref.g).norm() / ref.g.norm();
       worst = std::max(worst, error);
-      const double tolerance = method == InverseMethod::kLeastSquares
-                                   ? 100.0 * kEps * ref.condition_weighted
-                                   : 1e-11;
+      const double tolerance =
+          method == InverseMethod::kLeastSquares ? 100.0 * kEps * ref.condition_weighted : 1e-11;
       EXPECT_LE(error, tolerance) << where;
       const BinFigures figures = op->StaticFigures(k);
       EXPECT_NEAR(figures.condition_h / ref.condition_h, 1.0,

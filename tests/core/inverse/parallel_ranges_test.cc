@@ -13,8 +13,8 @@ namespace gearpath {
 namespace {
 
 TEST(ParallelRanges, EveryIndexRunsExactlyOnceInContiguousRanges) {
-  for (const std::size_t count : {std::size_t{0}, std::size_t{1}, std::size_t{7},
-                                  std::size_t{1000}}) {
+  for (const std::size_t count :
+       {std::size_t{0}, std::size_t{1}, std::size_t{7}, std::size_t{1000}}) {
     for (const unsigned threads : {1u, 2u, 3u, 16u}) {
       std::vector<std::atomic<int>> hits(count);
       std::mutex mutex;

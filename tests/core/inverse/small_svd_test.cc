@@ -44,8 +44,8 @@ double RelativeDifference(const Eigen::MatrixXcd& a, const Eigen::MatrixXcd& ref
 
 TEST(SmallSvd, MatchesEigenJacobiSvdOnEveryShapeUpToConditionTenToTheTen) {
   RandomSystems rnd(91);
-  for (const Shape shape : {Shape{12, 12}, Shape{18, 12}, Shape{7, 3}, Shape{6, 9},
-                            Shape{1, 4}, Shape{4, 1}, Shape{1, 1}}) {
+  for (const Shape shape : {Shape{12, 12}, Shape{18, 12}, Shape{7, 3}, Shape{6, 9}, Shape{1, 4},
+                            Shape{4, 1}, Shape{1, 1}}) {
     for (const double condition : {1.0, 1e3, 1e6, 1e10}) {
       const std::string where = std::to_string(shape.rows) + "x" + std::to_string(shape.cols) +
                                 " condition " + std::to_string(condition);
@@ -59,8 +59,7 @@ TEST(SmallSvd, MatchesEigenJacobiSvdOnEveryShapeUpToConditionTenToTheTen) {
       ASSERT_EQ(svd.v.rows(), shape.cols) << where;
       ASSERT_EQ(svd.v.cols(), r) << where;
       const double sigma_1 = ref.singularValues()(0);
-      EXPECT_LE((svd.sigma - ref.singularValues()).cwiseAbs().maxCoeff(), 1e-13 * sigma_1)
-          << where;
+      EXPECT_LE((svd.sigma - ref.singularValues()).cwiseAbs().maxCoeff(), 1e-13 * sigma_1) << where;
       for (Eigen::Index i = 1; i < r; ++i) EXPECT_GE(svd.sigma(i - 1), svd.sigma(i)) << where;
       const Eigen::MatrixXcd identity = Eigen::MatrixXcd::Identity(r, r);
       EXPECT_LE((svd.u.adjoint() * svd.u - identity).norm(), 1e-13) << where;
@@ -68,14 +67,14 @@ TEST(SmallSvd, MatchesEigenJacobiSvdOnEveryShapeUpToConditionTenToTheTen) {
       EXPECT_LE((svd.u * svd.sigma.asDiagonal() * svd.v.adjoint() - a).norm(), 1e-13 * a.norm())
           << where;
       const double lambda = 1e-6 * sigma_1 * sigma_1;  // cutoff 1e-3 sigma_1
-      EXPECT_LE(RelativeDifference(FilteredInverse(svd.u, svd.sigma, svd.v, lambda),
-                                   FilteredInverse(ref.matrixU(), ref.singularValues(),
-                                                   ref.matrixV(), lambda)),
+      EXPECT_LE(RelativeDifference(
+                    FilteredInverse(svd.u, svd.sigma, svd.v, lambda),
+                    FilteredInverse(ref.matrixU(), ref.singularValues(), ref.matrixV(), lambda)),
                 1e-11)
           << where;
-      EXPECT_LE(RelativeDifference(FilteredInverse(svd.u, svd.sigma, svd.v, 0.0),
-                                   FilteredInverse(ref.matrixU(), ref.singularValues(),
-                                                   ref.matrixV(), 0.0)),
+      EXPECT_LE(RelativeDifference(
+                    FilteredInverse(svd.u, svd.sigma, svd.v, 0.0),
+                    FilteredInverse(ref.matrixU(), ref.singularValues(), ref.matrixV(), 0.0)),
                 100.0 * kEps * condition)
           << where;
     }
