@@ -154,7 +154,7 @@ IdentificationOperator::Bin IdentificationOperator::BuildBin(
     // the weights, gives H's condition number where its eigenvalues are accurate enough
     // (condition_number.h); the SVD of B gives B's.
     const Eigen::MatrixXcd gram = GramMatrix(h);
-    bin.svd = DecomposeScaled(h, WeightsOrZero(gram).cwiseSqrt());
+    bin.svd = DecomposeScaled(h, WeightsOrZero(gram).cwiseSqrt(), &gram);
     bin.condition_weighted = ConditionFromSingularValues(bin.svd.sigma);
     bin.condition_h = ConditionFromGram(h, gram);
   } else {

@@ -84,29 +84,34 @@ void OrthogonaliseColumns(Eigen::MatrixXcd& w, Eigen::MatrixXcd* v) {
   }
 }
 
-// Eigenvectors of b^H b, strongest first (the descending order of the result), or the
+// Eigenvectors of gram = b^H b, strongest first (the descending order of the result), or the
 // identity if the eigen-solver fails (which would only cost sweeps). Built from Eigen's public
 // pieces rather than SelfAdjointEigenSolver<MatrixXcd>: that one rescales its input (a hypot
 // and a complex division per entry) and accumulates its rotations in complex arithmetic, about
 // a third of its cost at these sizes; here b is already scaled and the rotations of the real
 // tridiagonal problem are accumulated in a real matrix.
-Eigen::MatrixXcd GramEigenvectors(const Eigen::MatrixXcd& b) {
-  const Eigen::Tridiagonalization<Eigen::MatrixXcd> tridiagonal(GramMatrix(b));
+Eigen::MatrixXcd GramEigenvectors(const Eigen::MatrixXcd& gram) {
+  const Eigen::Tridiagonalization<Eigen::MatrixXcd> tridiagonal(gram);
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> real_problem;
   real_problem.computeFromTridiagonal(tridiagonal.diagonal(), tridiagonal.subDiagonal());
-  if (real_problem.info() != Eigen::Success) return Eigen::MatrixXcd::Identity(b.cols(), b.cols());
+  if (real_problem.info() != Eigen::Success) {
+    return Eigen::MatrixXcd::Identity(gram.cols(), gram.cols());
+  }
   // Q Z with the reflectors applied to Z directly (Q itself is never formed).
   Eigen::MatrixXcd vectors = real_problem.eigenvectors().rowwise().reverse().cast<Complex>();
   vectors.applyOnTheLeft(tridiagonal.matrixQ());
   return vectors;
 }
 
-// The tall case (rows >= cols, cols >= 1) of both entry points. v is null for values only.
-// Returns the unsorted column norms; w holds U diag(sigma) in the same (unsorted) order.
+// The tall case (rows >= cols, cols >= 1) of both entry points. v is null for values only;
+// gram is A^H A or null. Returns the unsorted column norms; w holds U diag(sigma) in the same
+// (unsorted) order.
 Eigen::VectorXd JacobiOnTall(const Eigen::MatrixXcd& a, double scale, Eigen::MatrixXcd& w,
-                             Eigen::MatrixXcd* v) {
-  const Eigen::MatrixXcd b = a * (1.0 / scale);  // exact: scale is a power of two
-  Eigen::MatrixXcd start = GramEigenvectors(b);
+                             Eigen::MatrixXcd* v, const Eigen::MatrixXcd* gram) {
+  const double inverse = 1.0 / scale;  // exact: scale is a power of two
+  const Eigen::MatrixXcd b = a * inverse;
+  Eigen::MatrixXcd start = GramEigenvectors(
+      gram != nullptr ? Eigen::MatrixXcd(*gram * (inverse * inverse)) : GramMatrix(b));
   w = b * start;
   if (v != nullptr) *v = std::move(start);
   OrthogonaliseColumns(w, v);
@@ -139,7 +144,7 @@ void CompleteOrthonormalColumns(Eigen::MatrixXcd& u, Eigen::Index first) {
   }
 }
 
-SmallSvd TallThinSvd(const Eigen::MatrixXcd& a) {
+SmallSvd TallThinSvd(const Eigen::MatrixXcd& a, const Eigen::MatrixXcd* gram) {
   const Eigen::Index n = a.cols();
   SmallSvd out;
   const double scale = PowerOfTwoScale(a);
@@ -151,7 +156,7 @@ SmallSvd TallThinSvd(const Eigen::MatrixXcd& a) {
   }
   Eigen::MatrixXcd w;
   Eigen::MatrixXcd v;
-  const Eigen::VectorXd norms = JacobiOnTall(a, scale, w, &v);
+  const Eigen::VectorXd norms = JacobiOnTall(a, scale, w, &v, gram);
   const std::vector<Eigen::Index> order = DescendingOrder(norms);
   out.sigma.resize(n);
   out.u.resize(a.rows(), n);
@@ -193,11 +198,18 @@ SmallSvd ThinSvd(const Eigen::MatrixXcd& a) {
     return SmallSvd{Eigen::MatrixXcd(a.rows(), r), Eigen::VectorXd(r),
                     Eigen::MatrixXcd(a.cols(), r)};
   }
-  if (a.rows() >= a.cols()) return TallThinSvd(a);
+  if (a.rows() >= a.cols()) return TallThinSvd(a, nullptr);
   // A^H = U' S V'^H  =>  A = V' S U'^H.
-  SmallSvd transposed = TallThinSvd(a.adjoint());
+  SmallSvd transposed = TallThinSvd(a.adjoint(), nullptr);
   std::swap(transposed.u, transposed.v);
   return transposed;
+}
+
+SmallSvd ThinSvd(const Eigen::MatrixXcd& a, const Eigen::MatrixXcd& gram) {
+  if (a.size() == 0 || a.rows() < a.cols() || gram.rows() != a.cols() || gram.cols() != a.cols()) {
+    return ThinSvd(a);
+  }
+  return TallThinSvd(a, &gram);
 }
 
 Eigen::VectorXd SingularValues(const Eigen::MatrixXcd& a) {
@@ -206,7 +218,7 @@ Eigen::VectorXd SingularValues(const Eigen::MatrixXcd& a) {
   const double scale = PowerOfTwoScale(tall);
   if (scale == 0.0) return Eigen::VectorXd::Zero(tall.cols());
   Eigen::MatrixXcd w;
-  const Eigen::VectorXd norms = JacobiOnTall(tall, scale, w, nullptr);
+  const Eigen::VectorXd norms = JacobiOnTall(tall, scale, w, nullptr, nullptr);
   const std::vector<Eigen::Index> order = DescendingOrder(norms);
   Eigen::VectorXd sigma(norms.size());
   for (Eigen::Index k = 0; k < sigma.size(); ++k)

@@ -35,6 +35,10 @@ struct SmallSvd {
 
 SmallSvd ThinSvd(const Eigen::MatrixXcd& a);
 
+// The same, for a caller that already has gram = A^H A: it only chooses the starting basis, so
+// its rounding does not matter. Used when rows >= cols (a wide A needs A A^H: formed here).
+SmallSvd ThinSvd(const Eigen::MatrixXcd& a, const Eigen::MatrixXcd& gram);
+
 // The r singular values only (descending): skips accumulating V and normalising U.
 Eigen::VectorXd SingularValues(const Eigen::MatrixXcd& a);
 

@@ -22,10 +22,16 @@ std::string_view ToString(InverseMethod method) noexcept {
   return "unknown";
 }
 
-ScaledSvd DecomposeScaled(const Eigen::MatrixXcd& h, const Eigen::VectorXd& column_scale) {
+ScaledSvd DecomposeScaled(const Eigen::MatrixXcd& h, const Eigen::VectorXd& column_scale,
+                          const Eigen::MatrixXcd* gram_of_h) {
   // A Jacobi SVD (small_svd.h): the accuracy of Eigen::JacobiSVD on the small singular values
   // that regularisation is all about, at a fraction of its cost on the per-bin sizes.
-  SmallSvd svd = ThinSvd(h * column_scale.asDiagonal());
+  const Eigen::MatrixXcd b = h * column_scale.asDiagonal();
+  // B^H B = D (H^H H) D.
+  SmallSvd svd = gram_of_h == nullptr
+                     ? ThinSvd(b)
+                     : ThinSvd(b, column_scale.asDiagonal() * *gram_of_h *
+                                      column_scale.asDiagonal());
   return ScaledSvd{std::move(svd.u), std::move(svd.sigma), std::move(svd.v), column_scale};
 }
 

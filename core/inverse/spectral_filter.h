@@ -30,8 +30,11 @@ struct ScaledSvd {
   Eigen::VectorXd column_scale;
 };
 
-// Decomposes H diag(column_scale). Allocates; configuration time only.
-ScaledSvd DecomposeScaled(const Eigen::MatrixXcd& h, const Eigen::VectorXd& column_scale);
+// Decomposes H diag(column_scale). Allocates; configuration time only. A caller that has
+// H^H H already (MWI forms it for its weights) passes it as gram_of_h: the SVD then does not
+// form the Gram matrix of B again.
+ScaledSvd DecomposeScaled(const Eigen::MatrixXcd& h, const Eigen::VectorXd& column_scale,
+                          const Eigen::MatrixXcd* gram_of_h = nullptr);
 
 // The default rank cutoff of least squares: sigma_max * max(m, n) * machine epsilon, the
 // convention of LAPACK's xGELSD callers, NumPy's pinv/lstsq and MATLAB's rank.
