@@ -10,8 +10,8 @@
 #include <thread>
 
 #include "core/evaluation/plant_family.h"
-#include "core/frf/identity_frf_set.h"
 #include "core/evaluation/plant_simulator.h"
+#include "core/frf/identity_frf_set.h"
 #include "core/pipeline/block_processor.h"
 
 namespace gearpath {

@@ -134,7 +134,8 @@ struct AnalysisOptions {
   double scale_floor = 0.05;  // relative floor of every indicator's healthy scale (5 %)
   // Tail guard (core/diagnosis/robust_baseline.h): every indicator's healthy scale is at least
   // its largest deviation over the baseline blocks / (clear_level x limit z), so a block like the
-  // worst healthy one neither raises nor holds an alarm. Off = median, robust scale and the floor only.
+  // worst healthy one neither raises nor holds an alarm. Off = median, robust scale and the
+  // floor only.
   bool tail_guard = true;
   // Persistence (k of the last n blocks), hysteresis and clear delay (core/diagnosis/
   // alarm_model.h): suspected after suspect_k exceedances, alarm after alarm_k, cleared after

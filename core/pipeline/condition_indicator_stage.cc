@@ -295,7 +295,7 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
       std::size_t e = kConditionIndicatorCount;
       for (std::size_t i = 0; i < rg.meshes.size(); ++i) out[e++] = values_.sideband_energy[i];
       out[e] = ExclusiveEnergy(g);
-      // The localisation's entry: this value unless TrackedExclusive() replaces it.
+      // The localisation's entry: this value unless TrackedLocalisation() replaces it.
       if (cs.signal < m.channels) w.indicators[m.tracked_offset + slot] = out[e];
       w.slot_valid[slot] = 1;
       w.slot_revolutions[slot] = static_cast<int>(record_.revolutions);

@@ -122,11 +122,6 @@ int RunEvaluate(const EvaluateArgs& args) {
   RunnerOptions runner;
   runner.order_tracking = args.order_tracking;
   runner.localisation_tracking = !args.no_localisation_tracking;
-  if (args.frf != "model" && args.frf != "identity") {
-    std::fprintf(stderr, "gearpath evaluate: --frf must be model or identity, got '%s'\n",
-                 args.frf.c_str());
-    return kExitBadInput;
-  }
   runner.identity_frf = args.frf == "identity";
   std::ofstream dump;
   std::mutex dump_mutex;
@@ -176,6 +171,11 @@ int RunEvaluate(const EvaluateArgs& args) {
       return kExitFailure;
     }
   }
+  if (dump.is_open() && !dump.flush()) {
+    std::fprintf(stderr, "gearpath evaluate: writing --dump-blocks file '%s' failed\n",
+                 args.dump_blocks_path.c_str());
+    return kExitFailure;
+  }
   for (const ScenarioOutcome& o : outcomes) {
     if (!o.error.empty()) return kExitFailure;
   }
@@ -214,6 +214,7 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--frf", args->frf,
                   "FRF set given to the machines: model (the plant's model FRFs) or identity "
                   "(each sensor its own path: monitoring before the hammer test)")
+      ->check(CLI::IsMember({"model", "identity"}))
       ->capture_default_str();
   cmd->add_flag("--no-localisation-tracking", args->no_localisation_tracking,
                 "run the machines with analysis.speed.localisation_tracking off (default on)");
