@@ -87,7 +87,7 @@ Status BlockPublisher::WriteOrWait(const AccelBlockView& block) {
       if (written.error().find("Timeout") == std::string::npos) return written;
       last_error = written.error();
       note("a subscriber stopped acknowledging (daemon gone or stalled)");
-    } else if (s.options.speedup <= 0) {
+    } else if (s.options.speedup <= 0 && !s.options.acknowledge_each) {
       break;  // --fast: flow control alone, for throughput
     } else {
       // Paced (real-time or N x) streams also wait for the acknowledgement: a daemon killed

@@ -12,6 +12,7 @@
 
 #include "core/common/accel_block.h"
 #include "core/common/result.h"
+#include "tools/common/block_sink.h"
 #include "tools/common/dds_options.h"
 
 namespace gearpath::tools {
@@ -26,22 +27,25 @@ struct PublisherOptions {
   // When the daemon goes away mid-stream, hold the block and wait this long for a subscriber
   // to take it again (a restarted daemon) before giving up.
   std::chrono::seconds resume_timeout{300};
+  // With speedup 0, still wait for every block's acknowledgement before Publish returns (the
+  // bridge records a block as published only once a subscriber has it).
+  bool acknowledge_each = false;
 };
 
-class BlockPublisher {
+class BlockPublisher : public BlockSink {
  public:
   // Throws std::runtime_error (naming the DDS call that failed) if the endpoint cannot be made.
   explicit BlockPublisher(const PublisherOptions& options);
-  ~BlockPublisher();
+  ~BlockPublisher() override;
   BlockPublisher(const BlockPublisher&) = delete;
   BlockPublisher& operator=(const BlockPublisher&) = delete;
 
   // Waits for the subscribers (first call only), sleeps until the block is due, publishes it.
   // A subscriber that disappears later is waited for (resume_timeout), the block held.
-  Status Publish(const AccelBlockView& block);
+  Status Publish(const AccelBlockView& block) override;
 
   // Blocks until every matched reader has acknowledged what was written, or the timeout.
-  Status Flush(std::chrono::milliseconds timeout);
+  Status Flush(std::chrono::milliseconds timeout) override;
 
  private:
   Status WriteOrWait(const AccelBlockView& block);
