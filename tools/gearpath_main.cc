@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   gearpath::tools::AddReportCommand(app, exit_code);
   gearpath::tools::AddSimCommand(app, exit_code);
   gearpath::tools::AddEvaluateCommand(app, exit_code);
+  gearpath::tools::AddBridgeCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

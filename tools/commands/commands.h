@@ -21,5 +21,6 @@ void AddInspectCommand(CLI::App& app, int& exit_code);
 void AddReportCommand(CLI::App& app, int& exit_code);
 void AddSimCommand(CLI::App& app, int& exit_code);
 void AddEvaluateCommand(CLI::App& app, int& exit_code);
+void AddBridgeCommand(CLI::App& app, int& exit_code);
 
 }  // namespace gearpath::tools
