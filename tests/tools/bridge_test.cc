@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include "core/io/recording.h"
 #include "tests/tools/tool_process.h"
@@ -505,6 +506,12 @@ TEST_F(StreamBridgeTest, MalformedOrTruncatedStreamsAreClearErrorsAndCounted) {
   cases.push_back({std::vector<std::byte>(good.begin(), good.begin() + 50),
                    "stream ended inside its header (50 bytes of 160)"});
   cases.push_back({FloatStream(0, 64, 5), "stream truncated: it ends 5 bytes into a frame of 12"});
+  {
+    std::vector<std::byte> b = FloatStream(0, 128);  // block 0 fine, block 1 beyond int64 time
+    const std::int64_t last = std::numeric_limits<std::int64_t>::max();
+    std::memcpy(b.data() + 32, &last, 8);
+    cases.push_back({b, "overflows the int64 time"});
+  }
   BridgeState state = LoadState();
   for (std::size_t i = 0; i < cases.size(); ++i) {
     SCOPED_TRACE(cases[i].expect);
@@ -514,8 +521,37 @@ TEST_F(StreamBridgeTest, MalformedOrTruncatedStreamsAreClearErrorsAndCounted) {
     EXPECT_NE(out->stream_error.find(cases[i].expect), std::string::npos) << out->stream_error;
     EXPECT_EQ(state.counters.stream_errors, i + 1);
   }
-  EXPECT_EQ(state.counters.blocks_published, 1u);  // the truncated stream's whole block went out
+  EXPECT_EQ(state.counters.blocks_published, 2u);  // the blocks completed before the error
   EXPECT_EQ(LoadState().counters.stream_errors, cases.size());
+}
+
+TEST_F(StreamBridgeTest, RandomBytesNeverCrashTheCutter) {
+  // Random garbage, and a valid header with random bytes of random length after it, split at
+  // random: every outcome is blocks, a clean end, or an error message; never a crash.
+  std::mt19937 rng(7);
+  const std::vector<std::byte> header = FloatStream(0, 0);
+  for (int round = 0; round < 300; ++round) {
+    std::vector<std::byte> bytes = round % 2 ? header : std::vector<std::byte>{};
+    if (round % 3 == 0 && !bytes.empty()) bytes[6 + rng() % 34] = std::byte(rng());  // bad field
+    const std::size_t extra = rng() % 2000;
+    for (std::size_t i = 0; i < extra; ++i) bytes.push_back(std::byte(rng()));
+    StreamCutter cutter(
+        {.machine_id = "m", .block_length = static_cast<std::uint32_t>(1 + rng() % 50)});
+    std::size_t blocks = 0;
+    Status st = Status::Ok();
+    for (std::size_t i = 0; i < bytes.size() && st.ok();) {
+      const std::size_t n = std::min<std::size_t>(1 + rng() % 300, bytes.size() - i);
+      st = cutter.Feed(std::span(bytes).subspan(i, n), [&](const AccelBlockView& v) {
+        EXPECT_EQ(v.samples.size(), v.channels.size() * v.samples_per_channel);
+        ++blocks;
+        return Status::Ok();
+      });
+      i += n;
+    }
+    if (st.ok()) st = cutter.Finish();
+    EXPECT_TRUE(st.ok() || !st.error().empty());
+    EXPECT_EQ(cutter.blocks(), blocks);
+  }
 }
 
 // --- the command, end to end over loopback DDS ------------------------------------------------

@@ -112,8 +112,13 @@ Status StreamCutter::Feed(std::span<const std::byte> bytes, const BlockHandler& 
     AccelBlockView v;
     v.machine_id = options_.machine_id;
     v.sequence = options_.first_sequence + blocks_;
-    v.t0_ns =
-        t0_ns_ + std::llround(static_cast<double>(first_sample) / header_->sample_rate_hz * 1e9);
+    const double offset_ns = static_cast<double>(first_sample) / header_->sample_rate_hz * 1e9;
+    // A header t0 near the end of int64 time must not wrap around (nor be undefined).
+    if (!(offset_ns < 9.2e18) ||
+        __builtin_add_overflow(t0_ns_, std::llround(offset_ns), &v.t0_ns)) {
+      return fail("stream t0 " + std::to_string(t0_ns_) + " ns plus " +
+                  std::to_string(first_sample) + " samples overflows the int64 time");
+    }
     v.sample_rate_hz = header_->sample_rate_hz;
     v.speed_hz = header_->shaft_speed_hz;
     v.speed_source =
