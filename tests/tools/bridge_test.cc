@@ -19,6 +19,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <thread>
 
 #include "core/io/recording.h"
 #include "tests/tools/tool_process.h"
@@ -559,12 +560,34 @@ TEST_F(StreamBridgeTest, RandomBytesNeverCrashTheCutter) {
 class BridgeCommand : public Bridge {
  protected:
   std::string Domain() const { return std::to_string(TestDomainId()); }
-  Result<Recording> Recorded(const std::string& name) {
-    return ReadRecording(dir_ / name / "gearbox-7");
+
+  // What the recorder wrote for the machine, as owning blocks.
+  std::vector<AccelBlock> Recorded(const std::string& name) {
+    Result<Recording> r = ReadRecording(dir_ / name / "gearbox-7");
+    EXPECT_TRUE(r.ok()) << r.error();
+    std::vector<AccelBlock> got;
+    if (!r.ok()) return got;
+    for (std::size_t i = 0; i < r->block_count(); ++i) {
+      MemorySink copy;
+      EXPECT_TRUE(copy.Publish(r->block(i)).ok());
+      got.push_back(copy.blocks[0]);
+    }
+    return got;
+  }
+
+  // Waits (deadline 30 s) until the state file says `next` blocks went out.
+  bool WaitForNextSequence(std::uint64_t next) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (std::chrono::steady_clock::now() < deadline) {
+      Result<BridgeState> s = LoadBridgeState(state_);
+      if (s.ok() && s->next_sequence == next) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
   }
 };
 
-TEST_F(BridgeCommand, DirectoryModePublishesOverDdsAndARestartPublishesNothingTwice) {
+TEST_F(BridgeCommand, DirectoryModeOverDdsKilledAndRestartedLosesAndRepeatsNothing) {
   WriteFile(dir_ / "export" / "run_a.txt", ExportText(1, 300));
   WriteFile(dir_ / "export" / "run_b.txt", ExportText(2, 200));
   // The recorder runs until told to stop: one that left right after the last block could
@@ -582,93 +605,107 @@ TEST_F(BridgeCommand, DirectoryModePublishesOverDdsAndARestartPublishesNothingTw
                                          "100",
                                          "--settle",
                                          "0",
-                                         "--once",
+                                         "--poll",
+                                         "0.05",
                                          "--domain",
                                          Domain()};
-  ToolProcess bridge(args, dir_, "bridge1");
-  ASSERT_EQ(bridge.Wait(std::chrono::seconds(30)), 0) << bridge.Err();
-  EXPECT_NE(bridge.Out().find("published 5 blocks (next sequence 5)"), std::string::npos)
-      << bridge.Out();
-  rec.Signal(SIGINT);
-  ASSERT_EQ(rec.Wait(std::chrono::seconds(15)), 0) << rec.Err();
-  Result<Recording> r = Recorded("rec");
-  ASSERT_TRUE(r.ok()) << r.error();
-  std::vector<AccelBlock> got;
-  for (std::size_t i = 0; i < r->block_count(); ++i) {
-    const AccelBlockView v = r->block(i);
-    MemorySink copy;
-    ASSERT_TRUE(copy.Publish(v).ok());
-    got.push_back(copy.blocks[0]);
+  {
+    // A watching bridge, killed without warning once both files are out.
+    ToolProcess bridge(args, dir_, "bridge1");
+    ASSERT_TRUE(WaitForNextSequence(5)) << bridge.Err();
+    bridge.Signal(SIGKILL);
+    ASSERT_EQ(bridge.Wait(std::chrono::seconds(10)), -SIGKILL);
   }
-  ASSERT_EQ(got.size(), 5u);
-  ExpectFileBlocks(got, 0, 1, 300, MtimeNs(dir_ / "export" / "run_a.txt"), 0);
-  ExpectFileBlocks(got, 3, 2, 200, MtimeNs(dir_ / "export" / "run_b.txt"), 3);
-
-  // Restarted with nothing new: nothing published, and it says so. (No subscriber needed.)
-  std::vector<std::string> again = args;
-  again.insert(again.end(), {"--subscribers", "0"});
-  ToolProcess bridge2(again, dir_, "bridge2");
+  // A new export while it was down, half of it still being written under a .part name.
+  WriteFile(dir_ / "export" / "run_c.txt", ExportText(3, 400));
+  WriteFile(dir_ / "export" / "run_d.txt.part", ExportText(4, 100));
+  std::vector<std::string> once = args;
+  once.push_back("--once");
+  ToolProcess bridge2(once, dir_, "bridge2");
   ASSERT_EQ(bridge2.Wait(std::chrono::seconds(30)), 0) << bridge2.Err();
-  EXPECT_NE(bridge2.Out().find("published 0 blocks (next sequence 5)"), std::string::npos)
+  EXPECT_NE(bridge2.Out().find("published 4 blocks (next sequence 9)"), std::string::npos)
       << bridge2.Out();
 
+  // Restarted with nothing new: nothing published, and it says so. (No subscriber needed.)
+  std::vector<std::string> again = once;
+  again.insert(again.end(), {"--subscribers", "0"});
+  ToolProcess bridge3(again, dir_, "bridge3");
+  ASSERT_EQ(bridge3.Wait(std::chrono::seconds(30)), 0) << bridge3.Err();
+  EXPECT_NE(bridge3.Out().find("published 0 blocks (next sequence 9)"), std::string::npos)
+      << bridge3.Out();
+
+  rec.Signal(SIGINT);
+  ASSERT_EQ(rec.Wait(std::chrono::seconds(15)), 0) << rec.Err();
+  const std::vector<AccelBlock> got = Recorded("rec");
+  ASSERT_EQ(got.size(), 9u);  // each block exactly once, in order
+  ExpectFileBlocks(got, 0, 1, 300, MtimeNs(dir_ / "export" / "run_a.txt"), 0);
+  ExpectFileBlocks(got, 3, 2, 200, MtimeNs(dir_ / "export" / "run_b.txt"), 3);
+  ExpectFileBlocks(got, 5, 3, 400, MtimeNs(dir_ / "export" / "run_c.txt"), 5);
+
   // Another machine's state file is refused, prefixed.
-  std::vector<std::string> other = args;
+  std::vector<std::string> other = once;
   other[4] = "gearbox-8";
-  ToolProcess bridge3(other, dir_, "bridge3");
-  ASSERT_EQ(bridge3.Wait(std::chrono::seconds(30)), 2);
-  EXPECT_NE(bridge3.Err().find("gearpath bridge: "), std::string::npos);
-  EXPECT_NE(bridge3.Err().find("belongs to machine \"gearbox-7\""), std::string::npos)
-      << bridge3.Err();
+  ToolProcess bridge4(other, dir_, "bridge4");
+  ASSERT_EQ(bridge4.Wait(std::chrono::seconds(30)), 2);
+  EXPECT_NE(bridge4.Err().find("gearpath bridge: "), std::string::npos);
+  EXPECT_NE(bridge4.Err().find("belongs to machine \"gearbox-7\""), std::string::npos)
+      << bridge4.Err();
 }
 
-TEST_F(BridgeCommand, StreamModeOverTcpPublishesOverDdsAcrossAReconnect) {
+// Sends `bytes` to 127.0.0.1:port as one connection.
+void SendStream(int port, const std::vector<std::byte>& bytes) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_GE(fd, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    ASSERT_GT(n, 0);
+    done += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+}
+
+int ListeningPort(ToolProcess& bridge) {
+  if (!bridge.WaitForStderr("listening on 127.0.0.1:", std::chrono::seconds(10))) return -1;
+  const std::string err = bridge.Err();
+  return std::stoi(err.substr(err.find("127.0.0.1:") + 10));
+}
+
+TEST_F(BridgeCommand, StreamModeOverTcpAndDdsContinuesAfterTheBridgeIsKilled) {
   ToolProcess rec({"record", "--domain", Domain(), "--out", (dir_ / "rec").string()}, dir_, "rec");
   ASSERT_TRUE(rec.WaitForStderr("subscribed", std::chrono::seconds(10))) << rec.Err();
-  ToolProcess bridge({"bridge", "--listen", "127.0.0.1:0", "--machine", "gearbox-7", "--state",
-                      state_.string(), "--block-length", "64", "--domain", Domain()},
-                     dir_, "bridge");
-  ASSERT_TRUE(bridge.WaitForStderr("listening on 127.0.0.1:", std::chrono::seconds(10)))
-      << bridge.Err();
-  const std::string err = bridge.Err();
-  const std::size_t at = err.find("127.0.0.1:") + 10;
-  const int port = std::stoi(err.substr(at));
-  auto send = [&](const std::vector<std::byte>& bytes) {
-    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-    ASSERT_GE(fd, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_port = htons(static_cast<std::uint16_t>(port));
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
-    std::size_t done = 0;
-    while (done < bytes.size()) {
-      const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-      ASSERT_GT(n, 0);
-      done += static_cast<std::size_t>(n);
-    }
-    ::close(fd);
-  };
-  // Two connections, the second continuing the signal where the first stopped.
-  send(FloatStream(0, 4 * 64));
-  ASSERT_TRUE(bridge.WaitForStderr("4 blocks published", std::chrono::seconds(20))) << bridge.Err();
-  send(FloatStream(4 * 64, 6 * 64 + 10));
+  const std::vector<std::string> args = {"bridge",    "--listen", "127.0.0.1:0",   "--machine",
+                                         "gearbox-7", "--state",  state_.string(), "--block-length",
+                                         "64",        "--domain", Domain()};
+  {
+    ToolProcess bridge(args, dir_, "bridge1");
+    const int port = ListeningPort(bridge);
+    ASSERT_GT(port, 0) << bridge.Err();
+    SendStream(port, FloatStream(0, 2 * 64));  // two connections, the signal continuing
+    SendStream(port, FloatStream(2 * 64, 2 * 64 + 20));
+    ASSERT_TRUE(WaitForNextSequence(4)) << bridge.Err();
+    bridge.Signal(SIGKILL);
+    ASSERT_EQ(bridge.Wait(std::chrono::seconds(10)), -SIGKILL);
+  }
+  // Restarted: the producer reconnects and sends from where the published blocks end.
+  ToolProcess bridge(args, dir_, "bridge2");
+  const int port = ListeningPort(bridge);
+  ASSERT_GT(port, 0) << bridge.Err();
+  EXPECT_NE(bridge.Err().find("(next sequence 4)"), std::string::npos) << bridge.Err();
+  SendStream(port, FloatStream(4 * 64, 6 * 64 + 10));
   ASSERT_TRUE(bridge.WaitForStderr("6 blocks published", std::chrono::seconds(20))) << bridge.Err();
-  rec.Signal(SIGINT);  // every block acknowledged: the recorder has them all
-  ASSERT_EQ(rec.Wait(std::chrono::seconds(15)), 0) << rec.Err();
   bridge.Signal(SIGTERM);
   ASSERT_EQ(bridge.Wait(std::chrono::seconds(10)), 0) << bridge.Err();
-  EXPECT_NE(bridge.Out().find("published 10 blocks (next sequence 10)"), std::string::npos)
+  EXPECT_NE(bridge.Out().find("published 6 blocks (next sequence 10)"), std::string::npos)
       << bridge.Out();
-  Result<Recording> r = Recorded("rec");
-  ASSERT_TRUE(r.ok()) << r.error();
-  std::vector<AccelBlock> got;
-  for (std::size_t i = 0; i < r->block_count(); ++i) {
-    MemorySink copy;
-    ASSERT_TRUE(copy.Publish(r->block(i)).ok());
-    got.push_back(copy.blocks[0]);
-  }
-  ExpectStreamBlocks(got, 10);
+  rec.Signal(SIGINT);  // every block acknowledged: the recorder has them all
+  ASSERT_EQ(rec.Wait(std::chrono::seconds(15)), 0) << rec.Err();
+  ExpectStreamBlocks(Recorded("rec"), 10);
 }
 
 }  // namespace
