@@ -90,6 +90,8 @@ std::string_view ConditionIndicatorName(ConditionIndicator indicator) noexcept {
       return "tsa_rms";
     case ConditionIndicator::kCrestFactor:
       return "crest_factor";
+    case ConditionIndicator::kSynchronousLowOrders:
+      return "synchronous_low_orders";
     case ConditionIndicator::kCount:
       break;
   }
@@ -129,6 +131,10 @@ std::string_view ConditionIndicatorDescription(ConditionIndicator indicator) noe
       return "RMS of the TSA, mean removed";
     case ConditionIndicator::kCrestFactor:
       return "largest deviation of the TSA from its mean over its RMS";
+    case ConditionIndicator::kSynchronousLowOrders:
+      return "residual power below half the lowest mesh order that is locked to the shaft, over "
+             "what its spread between revolutions leaves in a mean (~1 when healthy; wide, "
+             "smooth defects such as wear; unmoved by bursts and noise)";
     case ConditionIndicator::kCount:
       break;
   }
@@ -183,7 +189,8 @@ Status GearConditionIndicators::Compute(std::span<const double> tsa,
                                         std::span<const std::complex<double>> orders,
                                         std::span<const int> mesh_orders,
                                         double na4_reference_variance,
-                                        ConditionIndicatorValues& out) noexcept {
+                                        ConditionIndicatorValues& out,
+                                        const RevolutionSpreadView& spread) noexcept {
   // ---- Validation (nothing written before it passes).
   const std::size_t m_points = tsa.size();
   if (m_points < kMinPoints || m_points > max_points_ || !std::has_single_bit(m_points)) {
@@ -219,6 +226,19 @@ Status GearConditionIndicators::Compute(std::span<const double> tsa,
   }
   if (std::isnan(na4_reference_variance) || std::isinf(na4_reference_variance)) {
     return Reject("na4_reference_variance must be finite (<= 0 to use the record's own)");
+  }
+  const bool with_spread = spread.revolutions >= 2;
+  if (with_spread && (spread.locked.size() != half + 1 || spread.spread.size() != half + 1)) {
+    return Reject("the revolution spread has " + std::to_string(spread.locked.size()) + " and " +
+                  std::to_string(spread.spread.size()) +
+                  " orders, need M/2 + 1 = " + std::to_string(half + 1) + " each");
+  }
+  for (std::size_t k = 0; with_spread && k <= half; ++k) {
+    if (!(spread.locked[k] >= 0.0 && spread.spread[k] >= 0.0) || std::isinf(spread.locked[k]) ||
+        std::isinf(spread.spread[k])) {
+      return Reject("the revolution spread has a negative or non-finite power at order " +
+                    std::to_string(k));
+    }
   }
 
   // ---- Line roles.
@@ -277,6 +297,21 @@ Status GearConditionIndicators::Compute(std::span<const double> tsa,
     if (2 * k < z_min) low_energy += energy(k);
     if (k > z_max) high_energy += energy(k);
   }
+  // F ratio of the low band: the power locked to the shaft against what the unlocked content of
+  // R revolutions leaves in their mean (spread / (R - 1) per order). Noise, or a burst in some
+  // revolutions, raises both alike; a defect that returns every revolution raises only the
+  // locked part. Orders above the Nyquist order hold interpolation images only.
+  double low_locked = 0.0;
+  double low_spread = 0.0;
+  if (with_spread) {
+    const std::size_t top =
+        std::min(half, static_cast<std::size_t>(std::max(0.0, std::floor(spread.nyquist_order))));
+    for (std::size_t k = 1; k <= top && 2 * k < z_min; ++k) {
+      if (is_regular(k)) continue;
+      low_locked += spread.locked[k];
+      low_spread += spread.spread[k];
+    }
+  }
   std::array<double, kMaxMeshesPerShaft> sideband_energy{};
   std::array<double, kMaxMeshesPerShaft> mesh_energy{};
   std::size_t dominant = 0;
@@ -333,6 +368,9 @@ Status GearConditionIndicators::Compute(std::span<const double> tsa,
   v[CI::kResidualHighOrders] = Ratio(high_energy, whole.m2);
   v[CI::kTsaRms] = tsa_rms;
   v[CI::kCrestFactor] = crest;
+  v[CI::kSynchronousLowOrders] =
+      with_spread ? Ratio(low_locked, low_spread / (static_cast<double>(spread.revolutions) - 1.0))
+                  : 0.0;
   v.residual_variance = residual.m2;
   v.mesh_count = mesh_orders.size();
   v.sideband_energy = sideband_energy;

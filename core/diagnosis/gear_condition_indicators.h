@@ -36,19 +36,21 @@
 namespace gearpath {
 
 enum class ConditionIndicator : std::uint8_t {
-  kFm0,                 // peak-to-peak(TSA) / sum of mesh-harmonic amplitudes
-  kFm4,                 // kurtosis of the difference signal
-  kNa4,                 // 4th moment of the residual / (reference residual variance)^2
-  kM6a,                 // 6th moment of the difference / variance^3
-  kM8a,                 // 8th moment of the difference / variance^4
-  kEnergyRatio,         // RMS(difference) / RMS(regular)
-  kSidebandLevel,       // SLF: first sidebands of the dominant mesh / RMS(TSA)
-  kMeshHarmonics,       // sum of mesh-harmonic amplitudes [signal units]
-  kResidualRms,         // RMS(residual) / RMS(TSA)
-  kResidualLowOrders,   // residual energy below (lowest mesh order) / 2, / TSA energy
-  kResidualHighOrders,  // residual energy above the highest mesh order, / TSA energy
-  kTsaRms,              // RMS of the TSA (DC removed) [signal units]
-  kCrestFactor,         // max |TSA - mean| / RMS(TSA)
+  kFm0,                   // peak-to-peak(TSA) / sum of mesh-harmonic amplitudes
+  kFm4,                   // kurtosis of the difference signal
+  kNa4,                   // 4th moment of the residual / (reference residual variance)^2
+  kM6a,                   // 6th moment of the difference / variance^3
+  kM8a,                   // 8th moment of the difference / variance^4
+  kEnergyRatio,           // RMS(difference) / RMS(regular)
+  kSidebandLevel,         // SLF: first sidebands of the dominant mesh / RMS(TSA)
+  kMeshHarmonics,         // sum of mesh-harmonic amplitudes [signal units]
+  kResidualRms,           // RMS(residual) / RMS(TSA)
+  kResidualLowOrders,     // residual energy below (lowest mesh order) / 2, / TSA energy
+  kResidualHighOrders,    // residual energy above the highest mesh order, / TSA energy
+  kTsaRms,                // RMS of the TSA (DC removed) [signal units]
+  kCrestFactor,           // max |TSA - mean| / RMS(TSA)
+  kSynchronousLowOrders,  // low-order residual power locked to the shaft / what its spread
+                          // between revolutions leaves in a mean (an F ratio, ~1 when none)
   kCount,
 };
 
@@ -92,6 +94,16 @@ struct ConditionIndicatorValues {
   std::array<double, kMaxMeshesPerShaft> mesh_energy{};
 };
 
+// Per order k, the power locked to the shaft and the spread between revolutions
+// (SynchronousAverage::RevolutionSpread, orders 0..M/2), over R revolutions; orders above
+// nyquist_order hold interpolation images only.
+struct RevolutionSpreadView {
+  std::span<const double> locked;
+  std::span<const double> spread;
+  std::size_t revolutions = 0;
+  double nyquist_order = 0.0;
+};
+
 class GearConditionIndicators {
  public:
   // For TSAs of up to `max_points_per_revolution` points (a power of two, 8..2^20); validates
@@ -106,9 +118,13 @@ class GearConditionIndicators {
   // mean residual variance, <= 0 to use this record's own (NA4 is then the residual kurtosis).
   // Rejects wrong sizes, non-finite values and bad mesh orders (the message names the
   // argument); `out` is then untouched. noexcept, no allocation on success.
+  //
+  //
+  // spread: SynchronousAverage::RevolutionSpread() of the same signal and plan; without it
+  // (default, or fewer than 2 revolutions) kSynchronousLowOrders is 0.
   Status Compute(std::span<const double> tsa, std::span<const std::complex<double>> orders,
                  std::span<const int> mesh_orders, double na4_reference_variance,
-                 ConditionIndicatorValues& out) noexcept;
+                 ConditionIndicatorValues& out, const RevolutionSpreadView& spread = {}) noexcept;
 
  private:
   GearConditionIndicators() = default;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <utility>
 
@@ -43,6 +44,12 @@ Result<SynchronousAverage> SynchronousAverage::Create(std::size_t block_length,
   stage.sample_rate_hz_ = sample_rate_hz;
   stage.max_points_ = max_points_per_revolution;
   stage.plan_ = stage.MakePlan();
+  stage.hann_.resize(max_points_per_revolution);
+  for (std::size_t m = 0; m < max_points_per_revolution; ++m) {
+    stage.hann_[m] = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(m) /
+                                          static_cast<double>(max_points_per_revolution));
+  }
+  stage.mean_scratch_.assign(max_points_per_revolution / 2 + 1, {});
   for (std::size_t m = kMinPoints; m <= max_points_per_revolution; m *= 2) {
     Result<FftPlan> forward = FftPlan::Create(FftKind::kRealToComplex, m);
     if (!forward) return Error{what + forward.error()};
@@ -197,6 +204,57 @@ Status SynchronousAverage::Process(std::span<const double> signal,
   out.revolutions = revolutions;
   out.shaft_hz = plan.shaft_hz;
   out.nyquist_order = nyquist_order;
+  return Status::Ok();
+}
+
+Status SynchronousAverage::RevolutionSpread(std::span<const double> signal,
+                                            const SynchronousAveragePlan& plan,
+                                            std::span<double> locked,
+                                            std::span<double> spread) noexcept {
+  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
+  if (plan.points_per_revolution == 0) {
+    return Error{std::string(kStage) + ": the plan holds no grid (Plan() failed or never ran)"};
+  }
+  const std::size_t m_points = plan.points_per_revolution;
+  const std::size_t half = m_points / 2;
+  if (locked.size() != spread.size() || locked.size() > half + 1) {
+    return Error{std::string(kStage) + ": revolution spread asked for " +
+                 std::to_string(locked.size()) + " and " + std::to_string(spread.size()) +
+                 " orders, need equal counts of at most " + std::to_string(half + 1) +
+                 " for a revolution of " + std::to_string(m_points) + " points"};
+  }
+  if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) return s;
+
+  FftPlan& forward = forward_[PlanIndex(m_points)];
+  const std::span<double> revolution = forward.real_in();
+  const std::span<const std::complex<double>> bins = forward.complex_out();
+  const std::size_t window_step = max_points_ / m_points;
+  // Amplitude scaling of a Hann-windowed line: 2 / (M x the window's mean, 1/2).
+  const double interior = 4.0 / static_cast<double>(m_points);
+  const double edge = 2.0 / static_cast<double>(m_points);
+  const std::size_t orders = locked.size();
+  std::span<std::complex<double>> mean(mean_scratch_.data(), orders);
+  std::fill(mean.begin(), mean.end(), std::complex<double>{});
+  std::fill(spread.begin(), spread.end(), 0.0);
+  const double* x = signal.data();
+  const CubicStencil* stencil = plan.stencils.data();
+  for (std::size_t r = 0; r < plan.revolutions; ++r) {
+    for (std::size_t m = 0; m < m_points; ++m) {
+      revolution[m] = hann_[m * window_step] * ApplyCubicStencil(x, *stencil++);
+    }
+    forward.Execute();
+    for (std::size_t k = 0; k < orders; ++k) {
+      const std::complex<double> y = bins[k] * ((k == 0 || k == half) ? edge : interior);
+      mean[k] += y;
+      spread[k] += std::norm(y);  // sum of |Y|^2 for now
+    }
+  }
+  const double inv_r = 1.0 / static_cast<double>(plan.revolutions);
+  for (std::size_t k = 0; k < orders; ++k) {
+    mean[k] *= inv_r;
+    locked[k] = std::norm(mean[k]);
+    spread[k] = std::max(0.0, spread[k] * inv_r - locked[k]);
+  }
   return Status::Ok();
 }
 

@@ -122,6 +122,18 @@ class SynchronousAverage {
   Status Process(std::span<const double> signal, const SynchronousAveragePlan& plan,
                  SynchronousAverageRecord& out) noexcept;
 
+  // How much of each order is locked to the shaft, from each revolution's own spectrum Y_{k,r}
+  // (a Hann window over the revolution, so that strong lines that are not locked, such as
+  // another shaft's mesh tones or a drifting one, do not leak across the low orders; amplitude-
+  // scaled like the record's orders): locked[k] = |mean_r Y_{k,r}|^2 and
+  // spread[k] = mean_r |Y_{k,r} - mean_r Y_{k,r}|^2 for orders k = 0..locked.size() - 1. Noise,
+  // bursts and other shafts' lines land in both (locked ~ spread / (R - 1) on average); content
+  // that returns every revolution lands in `locked` only. Costs R FFTs of M points. Rejects what
+  // Process() rejects, spans of different sizes and more than M/2 + 1 orders; noexcept, no
+  // allocation.
+  Status RevolutionSpread(std::span<const double> signal, const SynchronousAveragePlan& plan,
+                          std::span<double> locked, std::span<double> spread) noexcept;
+
  private:
   SynchronousAverage() = default;
 
@@ -132,6 +144,8 @@ class SynchronousAverage {
   std::vector<FftPlan> forward_;
   std::vector<FftPlan> inverse_;
   SynchronousAveragePlan plan_;  // the one-step Process()'s grid
+  std::vector<double> hann_;     // periodic Hann window of max M points (M = max / s: every s-th)
+  std::vector<std::complex<double>> mean_scratch_;  // max M / 2 + 1
 };
 
 }  // namespace gearpath

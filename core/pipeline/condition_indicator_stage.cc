@@ -27,7 +27,8 @@ constexpr int kCoherenceHarmonics = 4;
 Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWorkspace& work) {
   const double fs = machine.setup.options.sample_rate_hz;
   // A whole revolution must fit in the block, so M (>= fs / f) never needs to exceed it.
-  const std::size_t max_points = std::clamp<std::size_t>(std::bit_ceil(work.n), 4, std::size_t{1} << 16);
+  const std::size_t max_points =
+      std::clamp<std::size_t>(std::bit_ceil(work.n), 4, std::size_t{1} << 16);
   auto tsa = SynchronousAverage::Create(work.n, fs, max_points);
   if (!tsa) return Error{"synchronous average: " + tsa.error()};
   tsa_.emplace(std::move(tsa.value()));
@@ -47,6 +48,8 @@ Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWo
   }
   plan_ok_.assign(machine.rate_groups.size(), 0);
   signal_.assign(work.n, 0.0);
+  locked_power_.assign(max_points / 2 + 1, 0.0);
+  spread_power_.assign(max_points / 2 + 1, 0.0);
   tracker_.reset();
   warp_.clear();
   if (o.order_tracking || localisation_only) {
@@ -68,8 +71,7 @@ Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWo
       for (int order : rg.mesh_orders) keep = keep && (k % static_cast<std::size_t>(order)) != 0;
       for (std::size_t h = 0; h < machine.rate_groups.size() && keep; ++h) {
         if (h == g) continue;
-        const double x =
-            static_cast<double>(k) * rg.ratio / machine.rate_groups[h].ratio;
+        const double x = static_cast<double>(k) * rg.ratio / machine.rate_groups[h].ratio;
         keep = std::abs(x - std::round(x)) > kCommonOrderTolerance;
       }
       mask[k] = keep ? 1 : 0;
@@ -96,11 +98,12 @@ void ConditionIndicatorStage::KeepSignatureLines(StageContext& ctx, std::size_t 
   const auto width = static_cast<std::size_t>(2 * kSignatureSidebands + 1);
   const auto sensor = static_cast<std::size_t>(cs.index);
   for (std::size_t i = 0; i < rg.meshes.size(); ++i) {
-    const std::size_t slot = signature_slot_[(group * 2 + (forces ? 1 : 0)) * kMaxMeshesPerShaft + i];
+    const std::size_t slot =
+        signature_slot_[(group * 2 + (forces ? 1 : 0)) * kMaxMeshesPerShaft + i];
     BlockWorkspace::Cd* base = w.signature_lines.data() + slot * w.signature_stride;
     for (int h = 1; h <= kSignatureHarmonics; ++h) {
-      BlockWorkspace::Cd* lines = base + static_cast<std::size_t>(h - 1) * w.signature_sensors * width +
-                                  sensor * width;
+      BlockWorkspace::Cd* lines =
+          base + static_cast<std::size_t>(h - 1) * w.signature_sensors * width + sensor * width;
       for (int k = -kSignatureSidebands; k <= kSignatureSidebands; ++k) {
         const long order = static_cast<long>(h) * rg.mesh_orders[i] + k;
         lines[static_cast<std::size_t>(k + kSignatureSidebands)] =
@@ -160,8 +163,8 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
     const double fc = ml.mesh_hz;
     if (!(fc - half_band > 0.0) || !(fc + half_band < nyquist)) continue;
     const auto lo = static_cast<std::size_t>(std::ceil((fc - half_band) / w.bin_hz));
-    const auto hi = std::min(w.bins - 1,
-                             static_cast<std::size_t>(std::floor((fc + half_band) / w.bin_hz)));
+    const auto hi =
+        std::min(w.bins - 1, static_cast<std::size_t>(std::floor((fc + half_band) / w.bin_hz)));
     for (std::size_t c = 0; c < ctx.machine.channels; ++c) {
       double power = 0.0;
       for (std::size_t k = lo; k <= hi; ++k) power += std::norm(w.spec[c * w.bins + k]);
@@ -199,7 +202,8 @@ double ConditionIndicatorStage::MeshCoherence(std::span<const double> signal, do
   double power = 0.0;
   for (int h = 1; h <= kCoherenceHarmonics; ++h) {
     const double k = h * teeth;
-    if (k < static_cast<double>(orders.size())) power += std::norm(orders[static_cast<std::size_t>(k)]);
+    if (k < static_cast<double>(orders.size()))
+      power += std::norm(orders[static_cast<std::size_t>(k)]);
   }
   return power;
 }
@@ -268,9 +272,9 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
   if (!(w.speed_hz > 0.0)) return RejectReason::kNone;
   const std::size_t groups = m.rate_groups.size();
   const bool tracked = TrackOrders(ctx);
-  const std::span<const double> warp =
-      tracked && m.setup.options.order_tracking ? std::span<const double>(warp_)
-                                                : std::span<const double>();
+  const std::span<const double> warp = tracked && m.setup.options.order_tracking
+                                           ? std::span<const double>(warp_)
+                                           : std::span<const double>();
   for (std::size_t g = 0; g < groups; ++g) {
     plan_ok_[g] = tsa_->Plan(m.rate_groups[g].ratio * w.speed_hz, plans_[g], warp).ok() ? 1 : 0;
   }
@@ -285,8 +289,20 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
       if (!plan_ok_[g] || !tsa_->Process(signal, plans_[g], record_).ok()) continue;
       const double na4_reference =
           st.residual_variance_healthy.blocks > 0 ? st.residual_variance_healthy.mean[slot] : 0.0;
-      if (!indicators_->Compute(record_.tsa(), record_.orders(), rg.mesh_orders, na4_reference,
-                                values_)
+      // The synchronous low-order ratio costs R more FFTs: measured channels only (the
+      // contributions are built from them; the forces are not scored).
+      RevolutionSpreadView spread;
+      if (cs.signal < m.channels) {
+        const std::size_t orders = record_.orders().size();
+        const std::span<double> locked(locked_power_.data(), orders);
+        const std::span<double> between(spread_power_.data(), orders);
+        if (tsa_->RevolutionSpread(signal, plans_[g], locked, between).ok()) {
+          spread = {locked, between, record_.revolutions, record_.nyquist_order};
+        }
+      }
+      if (!indicators_
+               ->Compute(record_.tsa(), record_.orders(), rg.mesh_orders, na4_reference, values_,
+                         spread)
                .ok()) {
         continue;
       }

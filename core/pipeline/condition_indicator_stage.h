@@ -6,8 +6,9 @@
 //
 // Besides the standard indicators, per rate group: the sideband energy around each of its
 // meshes (which mesh a fault modulates) and the EXCLUSIVE residual: the residual energy (in
-// signal units^2) on the orders of this rate that are not harmonics of any other shaft rate. Equal tooth ratios make some orders common to two rates (Table 1: 10 Hz and 7 Hz
-// share every 70 Hz line); leaving them out keeps one shaft's fault from scoring on another.
+// signal units^2) on the orders of this rate that are not harmonics of any other shaft rate. Equal
+// tooth ratios make some orders common to two rates (Table 1: 10 Hz and 7 Hz share every 70 Hz
+// line); leaving them out keeps one shaft's fault from scoring on another.
 #pragma once
 
 #include <optional>
@@ -58,7 +59,11 @@ class ConditionIndicatorStage final : public PipelineStage {
   std::vector<std::uint8_t> plan_ok_;
   std::vector<SynchronousAveragePlan> tracked_plans_;  // localisation tracking, per rate group
   ConditionIndicatorValues values_;
-  std::vector<double> signal_;                       // n: one signal in time
+  std::vector<double> signal_;  // n: one signal in time
+  // Measured channels: each order's locked power and spread between revolutions
+  // (kSynchronousLowOrders of gear_condition_indicators.h), orders 0..M/2.
+  std::vector<double> locked_power_;
+  std::vector<double> spread_power_;
   std::vector<std::vector<std::uint8_t>> exclusive_;  // per group: order line is exclusive
   // signature_slot_[(group * 2 + forces) * kMaxMeshesPerShaft + mesh]: signature slot index.
   std::vector<std::size_t> signature_slot_;

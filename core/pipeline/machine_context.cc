@@ -65,8 +65,8 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
     return Error{at + fmt::format("options.scale_floor must be in [0, 1], got {}", o.scale_floor)};
   }
   if (!(o.mesh_separation >= 1.0 && o.mesh_separation <= 100.0)) {
-    return Error{at + fmt::format("options.mesh_separation must be in [1, 100], got {}",
-                                  o.mesh_separation)};
+    return Error{
+        at + fmt::format("options.mesh_separation must be in [1, 100], got {}", o.mesh_separation)};
   }
   if (auto st = ValidateIdentificationOptions(o.identification); !st) {
     return Error{at + "options.identification: " + st.error()};
@@ -218,9 +218,8 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
     impl->shaft_group[s] = found;
   }
   for (std::size_t g = 0; g < train.gears.size(); ++g) {
-    RateGroup& rg =
-        impl->rate_groups[static_cast<std::size_t>(impl->shaft_group[static_cast<std::size_t>(
-            train.gears[g].shaft)])];
+    RateGroup& rg = impl->rate_groups[static_cast<std::size_t>(
+        impl->shaft_group[static_cast<std::size_t>(train.gears[g].shaft)])];
     rg.gears.push_back(static_cast<int>(g));
     rg.gear_teeth.push_back(train.gears[g].teeth);
     rg.gear_meshes.push_back(t.gear_mesh[g]);
@@ -231,8 +230,7 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
   for (RateGroup& rg : impl->rate_groups) {
     for (std::size_t i = 0; i < rg.gears.size(); ++i) {
       const int mesh = rg.gear_meshes[i];
-      if (mesh < 0 ||
-          std::find(rg.meshes.begin(), rg.meshes.end(), mesh) != rg.meshes.end()) {
+      if (mesh < 0 || std::find(rg.meshes.begin(), rg.meshes.end(), mesh) != rg.meshes.end()) {
         continue;
       }
       if (rg.meshes.size() >= kMaxMeshesPerShaft) {
@@ -243,8 +241,7 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
       rg.mesh_orders.push_back(rg.gear_teeth[i]);
     }
     for (std::size_t k = 0; k < kConditionIndicatorCount; ++k) {
-      rg.indicator_names.emplace_back(
-          ConditionIndicatorName(static_cast<ConditionIndicator>(k)));
+      rg.indicator_names.emplace_back(ConditionIndicatorName(static_cast<ConditionIndicator>(k)));
     }
     for (int mesh : rg.meshes) {
       rg.indicator_names.push_back("sideband_" + t.mesh_names[static_cast<std::size_t>(mesh)]);
@@ -254,9 +251,8 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
 
   // Condition-indicator signals and the indicator vector's layout.
   for (std::size_t r = 0; r < set.channels.size(); ++r) {
-    impl->condition_signals.push_back(
-        {ConditionSource::kMeasured, static_cast<int>(r),
-         set.channels[r].sensor + "/" + set.channels[r].axis});
+    impl->condition_signals.push_back({ConditionSource::kMeasured, static_cast<int>(r),
+                                       set.channels[r].sensor + "/" + set.channels[r].axis});
   }
   for (std::size_t p = 0; p < set.paths.size(); ++p) {
     impl->condition_signals.push_back(
@@ -302,10 +298,11 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
   }
   impl->indicator_count = offset;
   // The forces' entries are not scored (indicator_scoring_stage.h): the z limit counts the rest.
+  // The contributions' synchronous low-order ratio is never computed (it stays 0).
   for (const ConditionSlot& cs : impl->condition_slots) {
-    if (impl->condition_signals[cs.signal].source != ConditionSource::kForce) {
-      impl->scored_indicator_count += cs.count;
-    }
+    const ConditionSource source = impl->condition_signals[cs.signal].source;
+    if (source == ConditionSource::kMeasured) impl->scored_indicator_count += cs.count;
+    if (source == ConditionSource::kContribution) impl->scored_indicator_count += cs.count - 1;
   }
   for (const SignatureSlot& ss : impl->signature_slots) {
     if (!ss.forces) impl->scored_indicator_count += 2;

@@ -26,7 +26,7 @@ whole block and the precompute also in process CPU time, which a loaded machine 
                   of each of the three shafts, for both signals
   indicators      time-synchronous average of 36 signals (12 measured, 12 path contributions at
                   their best channel, 12 forces) at each of the 2 shaft rates (cubic Lagrange
-                  resampling), order spectra, regular / residual / difference signals and the 13
+                  resampling), order spectra, regular / residual / difference signals and the 14
                   condition indicators, per-mesh sideband energies, exclusive residual
   scoring         robust z of every indicator against the healthy baseline and the block score
 Precompute (as BM_ReferencePrecompute, Create + Prepare): FRF onto the block grid, MWI weights
@@ -78,7 +78,7 @@ GEARS = [("G1", 28, 0), ("G2", 40, 1), ("G3", 34, 1), ("G4", 34, 2)]
 MESHES = [(0, 1), (2, 3)]
 CI_NAMES = ["fm0", "fm4", "na4", "m6a", "m8a", "energy_ratio", "sideband_level_factor",
             "mesh_harmonics", "residual_rms", "residual_low_orders", "residual_high_orders",
-            "tsa_rms", "crest_factor"]
+            "tsa_rms", "crest_factor", "synchronous_low_orders"]
 TWO_SIDED = (CI_NAMES.index("mesh_harmonics"), CI_NAMES.index("tsa_rms"))
 
 
@@ -387,19 +387,31 @@ def tsa_plan(n, fs, shaft_hz, max_points):
     return dict(m=m, revolutions=whole, taps=taps, w=w, nyquist_order=0.5 * spr)
 
 
-def tsa(samples, plan):
+def tsa(samples, plan, spread_signals=0):
     """TSA (S, M) and order spectra (S, M/2 + 1) of S signals given as samples (n, S): each
-    resampled point gathers four rows of S values, so all signals share one gather."""
+    resampled point gathers four rows of S values, so all signals share one gather. With
+    spread_signals = s, also the first s signals' locked power and spread between revolutions
+    per order (s, M/2 + 1) each, from Hann-windowed revolutions (synchronous_average.h)."""
     m, r = plan["m"], plan["revolutions"]
     s = samples.shape[1]
     points = np.einsum("pjs,pj->ps", samples[plan["taps"]].reshape(-1, 4, s), plan["w"])
-    avg = points.reshape(r, m, s).mean(axis=0).T
+    revs = points.reshape(r, m, s)
+    avg = revs.mean(axis=0).T
     orders = amplitude_spectrum(avg)
     half = m // 2
     if plan["nyquist_order"] < half:
         orders[:, int(np.floor(plan["nyquist_order"])) + 1:] = 0.0
         avg = inverse_amplitude(orders, m)
-    return avg, orders
+    if not spread_signals:
+        return avg, orders, None
+    hann = 0.5 - 0.5 * np.cos(2 * np.pi * np.arange(m) / m)
+    y = np.fft.rfft(revs[:, :, :spread_signals] * hann[None, :, None], axis=1) * (4.0 / m)
+    y[:, 0] *= 0.5
+    y[:, half] *= 0.5
+    mean = y.mean(axis=0)
+    locked = np.abs(mean) ** 2
+    spread = np.maximum(0.0, (np.abs(y) ** 2).mean(axis=0) - locked)
+    return avg, orders, (locked.T, spread.T, r, plan["nyquist_order"])
 
 
 class IndicatorLayout:
@@ -450,8 +462,9 @@ def central_moments(x):
     return (d2.mean(axis=-1), d4.mean(axis=-1), (d4 * d2).mean(axis=-1), (d4 * d4).mean(axis=-1))
 
 
-def condition_indicators(avg, orders, lay, na4_reference):
-    """(S, 13 + meshes + 1) values and the residual variance (S,) of a stack of TSAs."""
+def condition_indicators(avg, orders, lay, na4_reference, spread=None):
+    """(S, 14 + meshes + 1) values and the residual variance (S,) of a stack of TSAs; the
+    synchronous low-order ratio only for the signals `spread` covers (0 for the rest)."""
     half = lay.half
     energy = 0.5 * (orders.real ** 2 + orders.imag ** 2)
     energy[:, half] = orders[:, half].real ** 2
@@ -483,7 +496,7 @@ def condition_indicators(avg, orders, lay, na4_reference):
     zero = 1e-24 * m2
     dz = d2 <= zero
     na4_ref = np.where(na4_reference > 0.0, na4_reference, s2)
-    v = np.zeros((avg.shape[0], 13 + len(lay.mesh_orders) + 1))
+    v = np.zeros((avg.shape[0], 14 + len(lay.mesh_orders) + 1))
     v[:, 0] = ratio(hi - lo, mesh_sum)
     v[:, 1] = np.where(dz, 0.0, ratio(d4, d2 * d2))
     v[:, 2] = np.where(s2 > zero, ratio(s4, na4_ref * na4_ref), 0.0)
@@ -497,7 +510,12 @@ def condition_indicators(avg, orders, lay, na4_reference):
     v[:, 10] = ratio(high, m2)
     v[:, 11] = rms
     v[:, 12] = ratio(np.maximum(hi - mean, mean - lo), rms)
-    v[:, 13:13 + sideband.shape[1]] = sideband
+    if spread is not None:
+        locked, between, r, nyquist = spread
+        band = lay.low & (np.arange(lay.half + 1) <= np.floor(nyquist))
+        v[:locked.shape[0], 13] = ratio(locked[:, band].sum(axis=1),
+                                        between[:, band].sum(axis=1) / (r - 1))
+    v[:, 14:14 + sideband.shape[1]] = sideband
     v[:, -1] = energy[:, lay.exclusive[:half + 1]].sum(axis=1)
     return v, s2
 
@@ -662,11 +680,12 @@ class Chain:
         values, variances = [], []
         for g, grp in enumerate(self.groups):
             plan = tsa_plan(n, self.fs, grp["ratio"] * speed, self.max_points)
-            avg, orders = tsa(samples, plan)
+            avg, orders, spread = tsa(samples, plan, spread_signals=self.channels)
             lay = self.layout(g, plan["m"])
             ref = (self.baseline["residual_variance"][g] if self.baseline is not None
                    else np.zeros(signals.shape[0]))
-            v, s2 = condition_indicators(avg, orders, lay, ref)
+            v, s2 = condition_indicators(avg, orders, lay, ref,
+                                         spread if plan["revolutions"] >= 2 else None)
             values.append(v)
             variances.append(s2)
         out["indicators"] = values
@@ -870,7 +889,7 @@ def run_checks():
     # 7 Hz tone (0.3 order off order 1) falls to |sin(0.3 pi R) / (R sin(0.3 pi))| = 0.053.
     sigs = np.stack([np.cos(2 * np.pi * 280 * t + 0.3), np.cos(2 * np.pi * 7 * t)])
     plan = tsa_plan(n, fs, 10.0, 1 << 14)
-    _, orders = tsa(np.ascontiguousarray(sigs.T), plan)
+    _, orders, _ = tsa(np.ascontiguousarray(sigs.T), plan)
     a28, a1 = abs(orders[0, 28]), abs(orders[1, 1])
     r = plan["revolutions"]
     want1 = abs(np.sin(0.3 * np.pi * r) / (r * np.sin(0.3 * np.pi)))

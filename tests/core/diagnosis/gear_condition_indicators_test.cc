@@ -402,5 +402,51 @@ TEST(GearConditionIndicators, SynchronousAverageAndIndicatorsAllocateNothingPerB
   }
 }
 
+// The synchronous low-order ratio from hand-made spreads. M = 64, mesh order 20: the low band
+// is orders 3..9 (above the shaft orders 1..2, 2 k < 20). With locked = 1 and spread = 2 per
+// order over R = 3 revolutions, F = 7 / (14 / 2) = 1; raising one order's locked power to 8
+// gives (6 + 8) / 7 = 2. Orders outside the band change nothing.
+TEST(GearConditionIndicators, SynchronousLowOrdersIsLockedPowerOverWhatTheSpreadLeavesInAMean) {
+  const Tsa t = MakeTsa(Lines(64, {{20, 1.0}}));
+  auto stage = GearConditionIndicators::Create(4096).value();
+  std::vector<double> locked(33, 1.0), spread(33, 2.0);
+  const std::vector<int> meshes = {20};
+  ConditionIndicatorValues v;
+  const auto ratio = [&](std::size_t revolutions) {
+    const RevolutionSpreadView view{locked, spread, revolutions, 32.0};
+    const Status s = stage.Compute(t.x, t.orders, meshes, 0.0, v, view);
+    EXPECT_TRUE(s.ok()) << s.error();
+    return v[CI::kSynchronousLowOrders];
+  };
+  EXPECT_NEAR(ratio(3), 1.0, 1e-12);
+  locked[5] = 8.0;
+  EXPECT_NEAR(ratio(3), 2.0, 1e-12);
+  locked[1] = locked[12] = 1e6;  // a shaft order and an order above the band
+  spread[2] = 1e6;
+  EXPECT_NEAR(ratio(3), 2.0, 1e-12);
+  EXPECT_EQ(ratio(1), 0.0);  // one revolution: no spread to judge by
+  EXPECT_EQ(ratio(0), 0.0);
+  // Without a spread at all it is 0 and the other indicators are as before.
+  ASSERT_TRUE(stage.Compute(t.x, t.orders, meshes, 0.0, v).ok());
+  EXPECT_EQ(v[CI::kSynchronousLowOrders], 0.0);
+}
+
+TEST(GearConditionIndicators, SynchronousLowOrdersRejectsABadSpreadNamingIt) {
+  const Tsa t = MakeTsa(Lines(64, {{20, 1.0}}));
+  auto stage = GearConditionIndicators::Create(4096).value();
+  std::vector<double> locked(33, 1.0), spread(33, 2.0), short_spread(20, 2.0);
+  ConditionIndicatorValues v;
+  const std::vector<int> meshes = {20};
+  Status s = stage.Compute(t.x, t.orders, meshes, 0.0, v, {locked, short_spread, 3, 32.0});
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().find("revolution spread"), std::string::npos) << s.error();
+  spread[4] = std::numeric_limits<double>::infinity();
+  s = stage.Compute(t.x, t.orders, meshes, 0.0, v, {locked, spread, 3, 32.0});
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().find("order 4"), std::string::npos) << s.error();
+  spread[4] = -1.0;
+  EXPECT_FALSE(stage.Compute(t.x, t.orders, meshes, 0.0, v, {locked, spread, 3, 32.0}).ok());
+}
+
 }  // namespace
 }  // namespace gearpath

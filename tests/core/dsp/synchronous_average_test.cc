@@ -284,5 +284,67 @@ TEST(SynchronousAveragePlan, SharedGridIsBitIdenticalToTheOneStepAverage) {
   EXPECT_FALSE(stage->Plan(kShaftHz, foreign).ok());
 }
 
+// RevolutionSpread: a line locked to the shaft lands in `locked` at its amplitude squared (the
+// Hann window's coherent gain is compensated; within the interpolation droop) with no spread.
+TEST(SynchronousAverageRevolutionSpread, LockedLineHasItsPowerAndNoSpread) {
+  const std::size_t n = 8000;
+  const std::vector<double> x = OrderTone(n, kFs, kShaftHz, 5.0, 0.8, 0.4);
+  auto stage = SynchronousAverage::Create(n, kFs, 4096).value();
+  SynchronousAveragePlan plan = stage.MakePlan();
+  ASSERT_TRUE(stage.Plan(kShaftHz, plan).ok());
+  ASSERT_EQ(plan.points_per_revolution, 1024u);
+  std::vector<double> locked(20), spread(20);
+  const Status s = stage.RevolutionSpread(x, plan, locked, spread);
+  ASSERT_TRUE(s.ok()) << s.error();
+  EXPECT_NEAR(locked[5], 0.64, 0.64 * 1e-3);
+  EXPECT_LT(spread[5], 1e-8);
+  // The Hann window spreads the line over k +/- 1 at half amplitude, and nowhere else.
+  EXPECT_NEAR(locked[4], 0.16, 0.16 * 1e-3);
+  EXPECT_NEAR(locked[6], 0.16, 0.16 * 1e-3);
+  EXPECT_LT(locked[8], 1e-8);
+}
+
+// Content in one revolution only (a burst) adds |B|^2 / R^2 to the mean and |B|^2 (R - 1) / R^2
+// to the spread: locked = spread / (R - 1) at every order, exactly, whatever its spectrum.
+TEST(SynchronousAverageRevolutionSpread, ABurstInOneRevolutionIsLockedOnlyAsMuchAsNoise) {
+  const std::size_t n = 8000;
+  std::vector<double> x(n, 0.0);
+  for (std::size_t i = 200; i < 500; ++i) {
+    const double t = static_cast<double>(i - 200);
+    x[i] = std::exp(-t / 60.0) * std::sin(kTwoPi * 0.07 * t);
+  }
+  auto stage = SynchronousAverage::Create(n, kFs, 4096).value();
+  SynchronousAveragePlan plan = stage.MakePlan();
+  ASSERT_TRUE(stage.Plan(kShaftHz, plan).ok());
+  const auto r = static_cast<double>(plan.revolutions);
+  ASSERT_GE(r, 5.0);
+  std::vector<double> locked(513), spread(513);
+  ASSERT_TRUE(stage.RevolutionSpread(x, plan, locked, spread).ok());
+  double total = 0.0;
+  for (std::size_t k = 0; k < locked.size(); ++k) {
+    EXPECT_NEAR(locked[k] * (r - 1.0), spread[k], 1e-9 * spread[k] + 1e-18) << "order " << k;
+    total += spread[k];
+  }
+  EXPECT_GT(total, 1e-4);  // the burst is there
+}
+
+TEST(SynchronousAverageRevolutionSpread, RejectsSpansOfWrongSizesAndPlansWithoutAGrid) {
+  const std::size_t n = 8000;
+  const std::vector<double> x(n, 1.0);
+  auto stage = SynchronousAverage::Create(n, kFs, 4096).value();
+  SynchronousAveragePlan plan = stage.MakePlan();
+  std::vector<double> a(10), b(10), c(9), big(514), big2(514);
+  EXPECT_FALSE(stage.RevolutionSpread(x, plan, a, b).ok());  // no grid yet
+  ASSERT_TRUE(stage.Plan(kShaftHz, plan).ok());
+  const Status unequal = stage.RevolutionSpread(x, plan, a, c);
+  ASSERT_FALSE(unequal.ok());
+  EXPECT_NE(unequal.error().find("equal counts"), std::string::npos) << unequal.error();
+  EXPECT_FALSE(stage.RevolutionSpread(x, plan, big, big2).ok());  // M/2 + 1 = 513
+  std::vector<double> nan = x;
+  nan[7] = std::nan("");
+  EXPECT_FALSE(stage.RevolutionSpread(nan, plan, a, b).ok());
+  EXPECT_TRUE(stage.RevolutionSpread(x, plan, a, b).ok());
+}
+
 }  // namespace
 }  // namespace gearpath
