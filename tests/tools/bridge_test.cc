@@ -652,6 +652,25 @@ TEST_F(BridgeCommand, DirectoryModeOverDdsKilledAndRestartedLosesAndRepeatsNothi
       << bridge4.Err();
 }
 
+TEST_F(BridgeCommand, StopsPromptlyOnSigtermWhileWaitingForADaemon) {
+  WriteFile(dir_ / "export" / "run_a.txt", ExportText(1, 300));
+  // Nobody subscribes: the bridge holds the first block for up to --wait 120 s; SIGTERM must
+  // end that wait (a service stop), with nothing recorded as published.
+  ToolProcess bridge({"bridge", "--dir", (dir_ / "export").string(), "--machine", "gearbox-7",
+                      "--state", state_.string(), "--block-length", "100", "--settle", "0",
+                      "--wait", "120", "--domain", Domain()},
+                     dir_, "bridge");
+  ASSERT_TRUE(bridge.WaitForStderr("run_a.txt: publishing 3 blocks", std::chrono::seconds(10)))
+      << bridge.Err();
+  bridge.Signal(SIGTERM);
+  ASSERT_EQ(bridge.Wait(std::chrono::seconds(20)), 0) << bridge.Err();
+  EXPECT_NE(bridge.Err().find("stopped while waiting for a daemon"), std::string::npos)
+      << bridge.Err();
+  EXPECT_NE(bridge.Out().find("published 0 blocks (next sequence 0)"), std::string::npos)
+      << bridge.Out();
+  EXPECT_EQ(LoadState().next_sequence, 0u);
+}
+
 // Sends `bytes` to 127.0.0.1:port as one connection.
 void SendStream(int port, const std::vector<std::byte>& bytes) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);

@@ -108,6 +108,10 @@ Result<std::size_t> DirectoryBridge::PublishFile(const ScannedFile& file,
     return std::size_t{0};
   }
 
+  log_(file.name + ": publishing " +
+       (resuming ? "from block " + std::to_string(record->blocks_published) + " of "
+                 : std::string()) +
+       std::to_string(record->blocks_total) + " blocks");
   std::size_t published = 0;
   for (std::uint64_t i = record->blocks_published; i < record->blocks_total; ++i) {
     if (stop && stop->load()) return published;

@@ -111,6 +111,10 @@ int RunDirectory(const BridgeOptions& opt, BridgeState& state, BlockSink& sink) 
   std::uint64_t sent = 0;
   while (!g_stop.load()) {
     Result<std::size_t> n = bridge.Poll(&g_stop);
+    if (!n && g_stop.load()) {
+      Log(opt, n.error());  // asked to stop while waiting for a subscriber: not a failure
+      break;
+    }
     if (!n) {
       std::fprintf(stderr, "gearpath bridge: %s\n", n.error().c_str());
       std::printf("published %llu blocks (next sequence %llu)\n",
@@ -143,6 +147,10 @@ int RunStreams(const BridgeOptions& opt, BridgeState& state, BlockSink& sink) {
   // One stream: its outcome, logged; false if the bridge must stop (sink or state failure).
   auto run_one = [&](int fd, const std::string& from, bool* bad) {
     Result<StreamOutcome> out = bridge.Run(fd, &g_stop);
+    if (!out && g_stop.load()) {
+      Log(opt, from + ": " + out.error());  // asked to stop while waiting for a subscriber
+      return true;
+    }
     if (!out) {
       std::fprintf(stderr, "gearpath bridge: %s: %s\n", from.c_str(), out.error().c_str());
       return false;
@@ -255,6 +263,7 @@ int RunBridge(const BridgeOptions& opt) {
   po.acknowledge_each = true;  // recorded as published only once a subscriber has it
   po.min_subscribers = opt.subscribers;
   po.match_timeout = std::chrono::milliseconds(static_cast<long long>(opt.wait_s * 1000));
+  po.stop = &g_stop;
   BlockPublisher publisher(po);
 
   g_stop.store(false);

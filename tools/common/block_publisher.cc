@@ -42,9 +42,23 @@ Status BlockPublisher::Publish(const AccelBlockView& block) {
   Impl& s = *impl_;
   if (!s.started) {
     if (s.options.min_subscribers > 0) {
-      Status matched = s.writer.WaitForReaders(
-          static_cast<std::uint32_t>(s.options.min_subscribers), s.options.match_timeout);
-      if (!matched) return Error{"no daemon subscribed to the block topic: " + matched.error()};
+      // In slices, so that a stop request is seen while waiting.
+      const auto deadline = std::chrono::steady_clock::now() + s.options.match_timeout;
+      for (;;) {
+        const auto left = std::max(std::chrono::steady_clock::duration::zero(),
+                                   deadline - std::chrono::steady_clock::now());
+        Status matched =
+            s.writer.WaitForReaders(static_cast<std::uint32_t>(s.options.min_subscribers),
+                                    std::min<std::chrono::steady_clock::duration>(
+                                        left, std::chrono::milliseconds(200)));
+        if (matched) break;
+        if (s.options.stop && s.options.stop->load()) {
+          return Error{"stopped while waiting for a daemon to subscribe"};
+        }
+        if (left == std::chrono::steady_clock::duration::zero()) {
+          return Error{"no daemon subscribed to the block topic: " + matched.error()};
+        }
+      }
     }
     s.started = true;
     s.first_t0_ns = block.t0_ns;
@@ -107,6 +121,10 @@ Status BlockPublisher::WriteOrWait(const AccelBlockView& block) {
       return Error{"block " + std::to_string(block.sequence) + ": no subscriber took it within " +
                    std::to_string(s.options.resume_timeout.count()) + " s" +
                    (last_error.empty() ? std::string() : " (" + last_error + ")")};
+    }
+    if (s.options.stop && s.options.stop->load()) {
+      return Error{"block " + std::to_string(block.sequence) +
+                   ": stopped while waiting for a subscriber to take it"};
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }

@@ -6,6 +6,7 @@
 // its readers blocks in Write instead of dropping: "as fast as possible" loses nothing.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -30,6 +31,9 @@ struct PublisherOptions {
   // With speedup 0, still wait for every block's acknowledgement before Publish returns (the
   // bridge records a block as published only once a subscriber has it).
   bool acknowledge_each = false;
+  // When set, the waits for a subscriber (first block, vanished daemon) give up as soon as it
+  // is true, so a service stops promptly; Publish then returns an error, the block not sent.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 class BlockPublisher : public BlockSink {
