@@ -299,6 +299,23 @@ TEST_F(Bridge, DirectoryCountsACorruptFileSkipsItAndNeverRetriesIt) {
   }
 }
 
+TEST_F(Bridge, DirectoryOrderByMtimeTakesTheOlderFileFirst) {
+  WriteFile(dir_ / "export" / "z_first.txt", ExportText(1, 100));
+  WriteFile(dir_ / "export" / "a_second.txt", ExportText(2, 100));
+  const auto now = fs::file_time_type::clock::now();
+  fs::last_write_time(dir_ / "export" / "z_first.txt", now - std::chrono::hours(2));
+  fs::last_write_time(dir_ / "export" / "a_second.txt", now - std::chrono::hours(1));
+  BridgeState state = LoadState();
+  MemorySink sink;
+  DirectoryBridgeOptions o = DirOptions();
+  o.order = FileOrder::kMtime;
+  DirectoryBridge bridge(o, &state, &sink);
+  ASSERT_TRUE(bridge.Poll().ok());
+  ASSERT_EQ(sink.blocks.size(), 2u);
+  ExpectFileBlocks(sink.blocks, 0, 1, 100, MtimeNs(dir_ / "export" / "z_first.txt"), 0);
+  ExpectFileBlocks(sink.blocks, 1, 2, 100, MtimeNs(dir_ / "export" / "a_second.txt"), 1);
+}
+
 TEST_F(Bridge, StateFileIsReplacedAtomicallyAndAnUnreadableOneIsRefused) {
   BridgeState s;
   s.machine_id = "gearbox-7";
