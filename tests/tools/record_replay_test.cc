@@ -375,7 +375,7 @@ TEST_F(RecordReplay, ReplayFailsWithExitCode1WhenNobodySubscribes) {
 }
 
 TEST_F(RecordReplay, EverySubcommandHasHelp) {
-  for (const char* cmd : {"record", "replay"}) {
+  for (const char* cmd : {"record", "replay", "bridge"}) {
     std::string out;
     EXPECT_EQ(RunTool({cmd, "--help"}, dir_, std::string("help_") + cmd, &out), 0) << cmd;
     EXPECT_NE(out.find("--domain"), std::string::npos) << out;
