@@ -21,6 +21,9 @@ constexpr double kCommonOrderTolerance = 0.1;
 // by well under 1 %).
 constexpr double kTrackingGain = 1.02;
 constexpr int kCoherenceHarmonics = 4;
+// Floor of the locked evidence, which can come out negative when nothing is locked (the
+// baseline is judged on a log scale).
+constexpr double kLockedEvidenceFloor = 1e-30;
 
 }  // namespace
 
@@ -219,6 +222,22 @@ double ConditionIndicatorStage::ExclusiveEnergy(std::size_t g) const noexcept {
   return exclusive;
 }
 
+double ConditionIndicatorStage::LockedExclusiveEnergy(
+    std::size_t g, const RevolutionSpreadView& spread) const noexcept {
+  // Units^2 like ExclusiveEnergy. Per order: the power locked to the shaft less what the
+  // unlocked content of R revolutions leaves in their mean on average (spread / (R - 1)). The
+  // revolutions are Hann-windowed, which spreads every line over k +/- 1: an order next to one
+  // that is not exclusive (a mesh harmonic, another shaft's line) is left out.
+  const std::vector<std::uint8_t>& mask = exclusive_[g];
+  const double in_mean = 1.0 / (static_cast<double>(spread.revolutions) - 1.0);
+  double locked = 0.0;
+  for (std::size_t k = 2; k + 1 < spread.locked.size() && k + 1 < mask.size(); ++k) {
+    if (!(mask[k] && mask[k - 1] && mask[k + 1])) continue;
+    locked += 0.5 * (spread.locked[k] - spread.spread[k] * in_mean);
+  }
+  return std::max(locked, kLockedEvidenceFloor);
+}
+
 void ConditionIndicatorStage::TrackedLocalisation(StageContext& ctx) noexcept {
   BlockWorkspace& w = ctx.work;
   const MachineContext& m = ctx.machine;
@@ -312,7 +331,13 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
       for (std::size_t i = 0; i < rg.meshes.size(); ++i) out[e++] = values_.sideband_energy[i];
       out[e] = ExclusiveEnergy(g);
       // The localisation's entry: this value unless TrackedLocalisation() replaces it.
-      if (cs.signal < m.channels) w.indicators[m.tracked_offset + slot] = out[e];
+      // From the revolutions' spread when there is one: an average of R revolutions still
+      // passes up to 1/R of another shaft's line, which at 2-3 revolutions named the wrong shaft
+      // in most low-speed tuning scenarios (docs/diagnosis.md section 11).
+      if (cs.signal < m.channels) {
+        w.indicators[m.tracked_offset + slot] =
+            spread.revolutions >= 2 ? LockedExclusiveEnergy(g, spread) : out[e];
+      }
       w.slot_valid[slot] = 1;
       w.slot_revolutions[slot] = static_cast<int>(record_.revolutions);
       w.slot_residual_variance[slot] = values_.residual_variance;

@@ -43,6 +43,9 @@ class ConditionIndicatorStage final : public PipelineStage {
                        std::span<const double> warp) noexcept;
   // Exclusive residual energy of the last average (record_) at rate group g.
   double ExclusiveEnergy(std::size_t g) const noexcept;
+  // The same from the revolutions' spread: only the part locked to the shaft (the shaft
+  // evidence at constant speed).
+  double LockedExclusiveEnergy(std::size_t g, const RevolutionSpreadView& spread) const noexcept;
   // AnalysisOptions::localisation_tracking: the measured slots' exclusive residuals and
   // transfer signatures again, from averages at the tracked angle (warp_), into the indicator
   // vector's tracked entries (MachineContext::tracked_offset).
