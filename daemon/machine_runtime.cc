@@ -87,10 +87,17 @@ Status PrepareMachines(const DaemonConfig& config, MachineSet& set) {
 
 }  // namespace
 
-Result<MachineSet> BuildMachines(const DaemonConfig& config) {
+Result<MachineSet> BuildMachines(const DaemonConfig& config,
+                                 std::shared_ptr<FrfRegistry> registry) {
   MachineSet set;
+  set.frf_registry = registry ? std::move(registry) : std::make_shared<FrfRegistry>();
+  FrfRegistry& frf = *set.frf_registry;
+  struct EndBuild {  // the next build reads every source again, whatever happens here
+    FrfRegistry& r;
+    ~EndBuild() { r.EndBuild(); }
+  } end_build{frf};
   for (const MachineConfig& machine : config.machines) {
-    auto setup = BuildMachineSetup(machine);
+    auto setup = BuildMachineSetup(machine, &frf);
     if (!setup) return Error{setup.error()};
     std::string summary = Summary(*setup);
     auto processor = BlockProcessor::Create(std::move(setup.value()));

@@ -18,6 +18,7 @@
 #include "core/common/result.h"
 #include "core/pipeline/block_processor.h"
 #include "daemon/daemon_config.h"
+#include "daemon/frf_registry.h"
 
 namespace gearpath::daemon {
 
@@ -31,14 +32,18 @@ struct MachineRuntime {
   std::vector<std::span<const std::string>> indicator_names;
 };
 
-// Everything one configuration needs to run: machines by id.
+// Everything one configuration needs to run: machines by id, and the registry their FRF sets
+// came from (a reload builds from the same one, so unchanged sets stay shared).
 struct MachineSet {
   std::map<std::string, std::unique_ptr<MachineRuntime>, std::less<>> machines;
+  std::shared_ptr<FrfRegistry> frf_registry;
 };
 
-// Loads every FRF set, builds and prepares every processor (in parallel). Errors name the
-// machine's key.
-Result<MachineSet> BuildMachines(const DaemonConfig& config);
+// Loads every distinct FRF set once (machines on one set share it and its operators,
+// frf_registry.h), builds and prepares every processor (in parallel). Errors name the
+// machine's key. Without a registry a new one is made.
+Result<MachineSet> BuildMachines(const DaemonConfig& config,
+                                 std::shared_ptr<FrfRegistry> registry = nullptr);
 
 struct MachineCounters {
   std::uint64_t received = 0;

@@ -6,6 +6,7 @@
 
 #include "core/frf/identity_frf_set.h"
 #include "core/io/frf_set_io.h"
+#include "daemon/frf_registry.h"
 
 namespace gearpath::daemon {
 namespace {
@@ -174,17 +175,25 @@ Result<FrfSet> IdentityFrfSetFor(const MachineConfig& machine) {
   return set;
 }
 
-Result<MachineSetup> BuildMachineSetup(const MachineConfig& machine) {
+Result<MachineSetup> BuildMachineSetup(const MachineConfig& machine, FrfRegistry* registry) {
   const json& m = machine.settings;
   const std::string& at = machine.key_path;
-  const bool identity = machine.frf_set == kIdentityFrfSet;
-  auto set =
-      identity ? IdentityFrfSetFor(machine) : LoadFrfSource(machine.frf_set, at + ".frf_set");
-  if (!set) return Error{set.error()};
-
   MachineSetup setup;
   setup.machine_id = machine.id;
-  setup.frf_set = std::move(set.value());
+  if (registry != nullptr) {
+    auto shared = registry->Get(machine);
+    if (!shared) return Error{shared.error()};
+    setup.frf_set = *shared->names;
+    // A copy for BlockProcessor::Create to validate, dropped there for the shared one.
+    setup.frf_set.decoupled = shared->operators->decoupled();
+    setup.shared_frf = shared->operators;
+  } else {
+    const bool identity = machine.frf_set == kIdentityFrfSet;
+    auto set =
+        identity ? IdentityFrfSetFor(machine) : LoadFrfSource(machine.frf_set, at + ".frf_set");
+    if (!set) return Error{set.error()};
+    setup.frf_set = std::move(set.value());
+  }
   FrfSet& frf = setup.frf_set;
 
   const json& channels = m.at("channels");

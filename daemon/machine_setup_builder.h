@@ -31,6 +31,12 @@ Result<FrfSet> BuiltinFrfSet(const std::string& name);
 // the grid, while the matrices held stay (N_min / 2 + 2) x channels^2.
 Result<FrfSet> IdentityFrfSetFor(const MachineConfig& machine);
 
-Result<MachineSetup> BuildMachineSetup(const MachineConfig& machine);
+class FrfRegistry;  // daemon/frf_registry.h
+
+// With a registry, the setup's FRF set comes from it and shares its matrix and per-shape
+// operators with every machine on the same set (MachineSetup::shared_frf); without one, the
+// set is loaded for this machine alone.
+Result<MachineSetup> BuildMachineSetup(const MachineConfig& machine,
+                                       FrfRegistry* registry = nullptr);
 
 }  // namespace gearpath::daemon

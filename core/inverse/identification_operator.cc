@@ -123,15 +123,16 @@ Result<IdentificationOperator> IdentificationOperator::Create(
   const RegularisationRule rule = options.regularisation.rule;
   op.precomputed_ = options.method == InverseMethod::kLeastSquares ||
                     rule == RegularisationRule::kFixed || rule == RegularisationRule::kNoiseFloor;
-  op.bins_.resize(frf.at.size());
+  auto bins = std::make_shared<std::vector<Bin>>(frf.at.size());
   // Each bin depends on its own H only, so the split over threads cannot change any result.
   ForEachRangeInParallel(
       frf.at.size(), ThreadsForRanges(frf.at.size(), kMinBinsPerThread, threads),
       [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) {
-          op.bins_[k] = BuildBin(frf.at[k], options, op.precomputed_);
+          (*bins)[k] = BuildBin(frf.at[k], options, op.precomputed_);
         }
       });
+  op.bins_ = std::move(bins);
   const Eigen::Index r = std::min(m, n);
   op.beta_.resize(r);
   op.beta2_.resize(r);
@@ -202,7 +203,7 @@ IdentificationOperator::Bin IdentificationOperator::BuildBin(
 }
 
 BinFigures IdentificationOperator::StaticFigures(Eigen::Index bin) const {
-  const Bin& b = bins_.at(static_cast<std::size_t>(bin));
+  const Bin& b = bins_->at(static_cast<std::size_t>(bin));
   BinFigures f;
   f.parameter = b.parameter;
   f.condition_h = b.condition_h;
@@ -236,7 +237,7 @@ IdentifyStatus IdentificationOperator::Identify(Eigen::Index bin,
   if (bin < 0 || bin >= bins()) return IdentifyStatus::kBinOutOfRange;
   if (x.size() != channels_ || forces.size() != paths_) return IdentifyStatus::kShapeMismatch;
   if (!x.allFinite()) return IdentifyStatus::kNonFiniteResponse;
-  const Bin& b = bins_[static_cast<std::size_t>(bin)];
+  const Bin& b = (*bins_)[static_cast<std::size_t>(bin)];
   double parameter = b.parameter;
   RuleOutcome outcome = b.outcome;
   if (b.g.size() > 0) {

@@ -16,9 +16,12 @@
 // effect there, its force is unobservable and is set to 0 (weight 0), instead of W = 1/0.
 //
 // Thread safety: Identify uses a workspace owned by the operator; one operator per thread.
+// A copy shares the per-bin factorisations (read-only once built) and gets its own workspace,
+// so machines on one FRF set hold the operators once and each identifies on its own copy.
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -63,7 +66,9 @@ class IdentificationOperator {
                                                const IdentificationOptions& options,
                                                unsigned threads = 0);
 
-  Eigen::Index bins() const noexcept { return static_cast<Eigen::Index>(bins_.size()); }
+  Eigen::Index bins() const noexcept {
+    return bins_ ? static_cast<Eigen::Index>(bins_->size()) : 0;
+  }
   Eigen::Index channels() const noexcept { return channels_; }
   Eigen::Index paths() const noexcept { return paths_; }
   const IdentificationOptions& options() const noexcept { return options_; }
@@ -107,8 +112,9 @@ class IdentificationOperator {
   Eigen::Index channels_ = 0;
   Eigen::Index paths_ = 0;
   bool precomputed_ = false;
-  std::vector<Bin> bins_;
-  // Per-block workspace, sized once.
+  // Shared between copies, never written after Create (see Thread safety).
+  std::shared_ptr<const std::vector<Bin>> bins_;
+  // Per-block workspace, sized once; each copy has its own.
   Eigen::VectorXcd beta_;
   Eigen::VectorXd beta2_;
   Eigen::VectorXcd coefficients_;

@@ -22,6 +22,7 @@
 #include "core/pipeline/machine_state.h"
 #include "core/pipeline/path_energy_stage.h"
 #include "core/pipeline/pipeline_stage.h"
+#include "core/pipeline/shared_frf_operators.h"
 #include "core/pipeline/spectra_stage.h"
 #include "core/pipeline/speed_stage.h"
 
@@ -194,6 +195,7 @@ Result<BlockProcessor> BlockProcessor::Create(MachineSetup setup) {
   impl->machine = std::move(machine.value());
   if (Status st = InitialiseState(impl->machine, impl->state); !st) return Error{st.error()};
   impl->fingerprint = LearnedStateFingerprint(impl->machine);
+  if (Status st = DropOwnDecoupledCopy(impl->machine.setup); !st) return Error{st.error()};
   impl->shapes.reserve(kMaxShapes);
   return BlockProcessor(std::move(impl));
 }

@@ -55,6 +55,8 @@ namespace gearpath {
 
 inline constexpr std::size_t kMaxShapes = 4;
 
+class SharedFrfOperators;  // core/pipeline/shared_frf_operators.h
+
 struct AnalysisOptions {
   // --- Bearing-force identification (core/inverse): method (MWI default, Tikhonov, least
   // squares), regularisation rule (default: noise floor, eta = 1e-3, fixed per FRF set so the
@@ -159,6 +161,10 @@ struct MachineSetup {
   // must be present; block channels without an FRF row are rejected at Create().
   std::vector<ExpectedChannel> block_channels;
   AnalysisOptions options;
+  // Optional: the FRF set's decoupled matrix and its per-shape operators, shared with other
+  // machines. It must hold frf_set.decoupled; Create() checks that and drops this setup's own
+  // copy of the matrix (setup().frf_set.decoupled is then empty). Null: everything is private.
+  std::shared_ptr<SharedFrfOperators> shared_frf;
 };
 
 struct BlockPathShare {

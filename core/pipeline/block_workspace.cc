@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "core/pipeline/shared_frf_operators.h"
+
 namespace gearpath {
 
 Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std::size_t n) {
@@ -11,7 +13,9 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   w.n = n;
   w.bins = n / 2 + 1;
   w.bin_hz = fs / static_cast<double>(n);
-  auto map = MapFrfToBlockGrid(machine.setup.frf_set.decoupled, n, fs);
+  // Machines on one shared FRF set share its mapped matrices (shared_frf_operators.h).
+  auto map = machine.setup.shared_frf ? machine.setup.shared_frf->Mapping(n, fs)
+                                      : MapFrfToBlockGrid(machine.setup.frf_set.decoupled, n, fs);
   if (!map) return Error{map.error()};
   w.map = std::move(map.value());
   auto inverse = InverseSpectrum::Create(n, 1);

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
+#include <utility>
 
 namespace gearpath {
 
@@ -63,20 +65,23 @@ Result<FrfGridMapping> MapFrfToBlockGrid(const FrfMatrix& frf, std::size_t block
   map.first_bin = first;
   const std::size_t count = last - first + 1;
   map.bins_outside = bins - count;
-  map.frf.frequency_hz.resize(static_cast<Eigen::Index>(count));
-  map.frf.at.resize(count);
+  auto mapped = std::make_shared<FrfMatrix>();
+  mapped->frequency_hz.resize(static_cast<Eigen::Index>(count));
+  mapped->at.resize(count);
   Eigen::Index j = 0;  // FRF interval [j, j+1] bracketing f
   for (std::size_t i = 0; i < count; ++i) {
     const double f = static_cast<double>(first + i) * df;
-    map.frf.frequency_hz[static_cast<Eigen::Index>(i)] = f;
+    mapped->frequency_hz[static_cast<Eigen::Index>(i)] = f;
     while (j + 1 < n && frf.frequency_hz[j + 1] <= f + eps) ++j;
     if (std::abs(frf.frequency_hz[j] - f) <= eps || j + 1 >= n) {
-      map.frf.at[i] = frf.at[j];
+      mapped->at[i] = frf.at[j];
     } else {
       const double t = (f - frf.frequency_hz[j]) / (frf.frequency_hz[j + 1] - frf.frequency_hz[j]);
-      map.frf.at[i] = (1.0 - t) * frf.at[j] + t * frf.at[j + 1];
+      mapped->at[i] = (1.0 - t) * frf.at[j] + t * frf.at[j + 1];
     }
   }
+  map.frf.at = mapped->at;
+  map.in_range = std::move(mapped);
   return map;
 }
 

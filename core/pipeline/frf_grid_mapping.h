@@ -14,18 +14,29 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
+#include <span>
 
 #include "core/common/frf_matrix.h"
 #include "core/common/result.h"
 
 namespace gearpath {
 
+// FrfMatrix's read interface over per-bin matrices that another object owns.
+struct FrfMatrixView {
+  std::span<const Eigen::MatrixXcd> at;
+  Eigen::Index bins() const noexcept { return static_cast<Eigen::Index>(at.size()); }
+};
+
+// A copy is cheap and shares the mapped matrices, which are never written after the mapping:
+// every machine on one FRF set and block shape can hold the same ones (SharedFrfOperators).
 struct FrfGridMapping {
   std::size_t block_length = 0;
   double sample_rate_hz = 0.0;
   std::size_t block_bins = 0;    // N/2 + 1
   std::size_t first_bin = 0;     // first in-range block bin
-  FrfMatrix frf;                 // in-range bins only: frf.at[i] is block bin first_bin + i
+  std::shared_ptr<const FrfMatrix> in_range;  // the FRF on the in-range bins, their frequencies
+  FrfMatrixView frf;             // views *in_range: frf.at[i] is block bin first_bin + i
   std::size_t bins_outside = 0;  // block_bins - frf.bins()
 
   bool InRange(std::size_t bin) const noexcept {

@@ -6,6 +6,7 @@
 
 #include "core/pipeline/block_workspace.h"
 #include "core/pipeline/machine_context.h"
+#include "core/pipeline/shared_frf_operators.h"
 
 namespace gearpath {
 namespace {
@@ -21,7 +22,11 @@ double MedianInPlace(std::vector<double>& v, std::size_t n) noexcept {
 }  // namespace
 
 Status IdentificationStage::Configure(const MachineContext& machine, BlockWorkspace& work) {
-  auto op = IdentificationOperator::Create(work.map.frf, machine.setup.options.identification);
+  const IdentificationOptions& options = machine.setup.options.identification;
+  // Machines on one shared FRF set share the per-bin operators; each keeps its own workspace.
+  auto op = machine.setup.shared_frf
+                ? machine.setup.shared_frf->Operator(work.n, work.map.sample_rate_hz, options)
+                : IdentificationOperator::Create(*work.map.in_range, options);
   if (!op) return Error{"identification operator: " + op.error()};
   op_.emplace(std::move(op.value()));
   const auto in_range = static_cast<std::size_t>(work.map.frf.bins());

@@ -35,7 +35,7 @@ TEST(FrfGridMappingTest, ReproducesAnFrfLinearInFrequencyExactly) {
   EXPECT_EQ(map->first_bin, 10u);
   EXPECT_EQ(map->frf.bins(), 401);
   EXPECT_EQ(map->bins_outside, 501u - 401u);
-  const FrfMatrix truth = LinearFrf(map->frf.frequency_hz);
+  const FrfMatrix truth = LinearFrf(map->in_range->frequency_hz);
   for (Eigen::Index k = 0; k < map->frf.bins(); ++k) {
     EXPECT_LT((map->frf.at[k] - truth.at[k]).norm(), 1e-9 * truth.at[k].norm());
   }

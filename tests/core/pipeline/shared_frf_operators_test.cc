@@ -1,0 +1,134 @@
+// Machines on one FRF set share its matrix and per-shape operators (SharedFrfOperators), and
+// judge exactly as machines that own theirs.
+#include "core/pipeline/shared_frf_operators.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "tests/core/pipeline/simulated_machine.h"
+
+namespace gearpath {
+namespace {
+using namespace gearpath::testing;
+
+std::shared_ptr<SharedFrfOperators> SharedOf(const Machine& m) {
+  return std::make_shared<SharedFrfOperators>(std::make_shared<const FrfMatrix>(m.frf.decoupled));
+}
+
+BlockProcessor Make(const Machine& m, std::shared_ptr<SharedFrfOperators> shared) {
+  MachineSetup s = MakeSetup(m);
+  s.shared_frf = std::move(shared);
+  auto p = BlockProcessor::Create(std::move(s));
+  EXPECT_TRUE(p.ok()) << p.error();
+  return std::move(p.value());
+}
+
+// Every published figure of the block, bit for bit.
+void ExpectSameResult(const BlockResult& a, const BlockResult& b) {
+  EXPECT_EQ(a.sequence, b.sequence);
+  EXPECT_EQ(a.dominant_path, b.dominant_path);
+  ASSERT_EQ(a.paths.size(), b.paths.size());
+  for (std::size_t p = 0; p < a.paths.size(); ++p) {
+    EXPECT_EQ(a.paths[p].share, b.paths[p].share);
+    EXPECT_EQ(a.paths[p].criterion, b.paths[p].criterion);
+  }
+  ASSERT_EQ(a.shafts.size(), b.shafts.size());
+  for (std::size_t s = 0; s < a.shafts.size(); ++s) {
+    EXPECT_EQ(a.shafts[s].raw, b.shafts[s].raw);
+    EXPECT_EQ(a.shafts[s].reconstructed, b.shafts[s].reconstructed);
+  }
+  EXPECT_EQ(a.regularisation.alpha_median, b.regularisation.alpha_median);
+  EXPECT_EQ(a.regularisation.condition_max, b.regularisation.condition_max);
+  EXPECT_EQ(a.regularisation.relative_residual, b.regularisation.relative_residual);
+  EXPECT_EQ(a.score.score, b.score.score);
+  EXPECT_EQ(a.verdict.state, b.verdict.state);
+  EXPECT_EQ(a.verdict.gear_name, b.verdict.gear_name);
+}
+
+TEST(SharedFrfOperatorsTest, TwoMachinesOnOneSetShareOneOperatorAndJudgeAsAPrivateOne) {
+  const Machine& m = Table1Machine();
+  auto shared = SharedOf(m);
+  BlockProcessor a = Make(m, shared);
+  BlockProcessor b = Make(m, shared);
+  BlockProcessor own = Make(m, nullptr);
+  ASSERT_TRUE(a.Prepare(kBlock));
+  ASSERT_TRUE(b.Prepare(kBlock));
+  EXPECT_EQ(shared->mappings_built(), 1u);
+  EXPECT_EQ(shared->operators_built(), 1u);
+  EXPECT_EQ(a.setup().shared_frf.get(), b.setup().shared_frf.get());
+  EXPECT_EQ(a.setup().frf_set.decoupled.bins(), 0);  // the machine's own copy is gone
+  // Learning, then a fracture on G1 that the alarm model must name, through all three.
+  GearboxSimulator healthy = MakeSimulator(m, FaultType::kNone, "", 7);
+  GearboxSimulator faulty = MakeSimulator(m, FaultType::kToothFracture, "G1", 5);
+  AccelBlock block;
+  BlockResult ra, rb, ro;
+  for (int i = 0; i < kBaselineBlocks + 5; ++i) {
+    (i < kBaselineBlocks ? healthy : faulty).NextBlock(block);
+    block.sequence = static_cast<std::uint64_t>(i);
+    ASSERT_TRUE(a.Process(block.view(), ra).accepted());
+    ASSERT_TRUE(b.Process(block.view(), rb).accepted());
+    ASSERT_TRUE(own.Process(block.view(), ro).accepted());
+    ExpectSameResult(ra, ro);
+    ExpectSameResult(rb, ro);
+  }
+  EXPECT_EQ(ro.verdict.state, FaultState::kAlarm);
+  EXPECT_EQ(shared->operators_built(), 1u);
+}
+
+TEST(SharedFrfOperatorsTest, OtherIdentificationOptionsGetTheirOwnOperator) {
+  const Machine& m = Table1Machine();
+  auto shared = SharedOf(m);
+  MachineSetup s = MakeSetup(m);
+  s.shared_frf = shared;
+  s.options.identification.iterations = 3;
+  auto other = BlockProcessor::Create(std::move(s));
+  ASSERT_TRUE(other.ok()) << other.error();
+  BlockProcessor a = Make(m, shared);
+  ASSERT_TRUE(a.Prepare(kBlock));
+  ASSERT_TRUE(other->Prepare(kBlock));
+  EXPECT_EQ(shared->mappings_built(), 1u);  // the grid mapping does not depend on them
+  EXPECT_EQ(shared->operators_built(), 2u);
+}
+
+TEST(SharedFrfOperatorsTest, ASetupWhoseMatrixIsNotTheSharedOneIsRefused) {
+  const Machine& m = Table1Machine();
+  MachineSetup s = MakeSetup(m);
+  s.shared_frf = SharedOf(m);
+  s.frf_set.decoupled.at[3](0, 0) += Complex(1e-9, 0.0);
+  const auto p = BlockProcessor::Create(std::move(s));
+  ASSERT_FALSE(p.ok());
+  EXPECT_EQ(p.error(),
+            "machine 'sim': the shared FRF operators were built from another decoupled FRF "
+            "matrix");
+}
+
+TEST(SharedFrfOperatorsTest, MachinesPreparedAndRunOnSeveralThreadsBuildTheOperatorOnce) {
+  // What the daemon does: prepare in parallel, then process on worker threads (TSan target).
+  const Machine& m = Table1Machine();
+  auto shared = SharedOf(m);
+  std::vector<BlockProcessor> machines;
+  for (int i = 0; i < 4; ++i) machines.push_back(Make(m, shared));
+  std::vector<std::thread> threads;
+  std::vector<BlockResult> last(machines.size());
+  for (std::size_t i = 0; i < machines.size(); ++i) {
+    threads.emplace_back([&, i] {
+      EXPECT_TRUE(machines[i].Prepare(kBlock));
+      GearboxSimulator sim = MakeSimulator(m, FaultType::kNone, "", 11);
+      AccelBlock block;
+      for (std::uint64_t k = 0; k < 3; ++k) {
+        sim.NextBlock(block);
+        block.sequence = k;
+        EXPECT_TRUE(machines[i].Process(block.view(), last[i]).accepted());
+      }
+    });
+  }
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(shared->operators_built(), 1u);
+  for (std::size_t i = 1; i < machines.size(); ++i) ExpectSameResult(last[i], last[0]);
+}
+
+}  // namespace
+}  // namespace gearpath
