@@ -217,6 +217,8 @@ Result<DaemonConfig> ParseDaemonConfig(std::string_view text, std::string_view o
   config.log_level = c["daemon"]["log_level"];
   config.status_period_s = c["daemon"]["status_period_s"];
   config.throughput_log_period_s = c["daemon"]["throughput_log_period_s"];
+  config.workers = c["daemon"]["workers"];
+  config.queue_blocks = c["daemon"]["queue_blocks"];
   config.state_directory = c["state"]["directory"];
   config.state_save_period_s = c["state"]["save_period_s"];
   config.standby_primary = c["standby"]["primary"];

@@ -51,6 +51,8 @@ struct DaemonConfig {
   std::string log_level;
   double status_period_s = 1.0;
   double throughput_log_period_s = 60.0;
+  int workers = 0;       // daemon.workers: processing threads, 0 = hardware threads
+  int queue_blocks = 32;  // daemon.queue_blocks: blocks queued per machine
   std::string state_directory;  // as configured; empty = $STATE_DIRECTORY or none
   double state_save_period_s = 30.0;
   std::string standby_primary;   // standby.primary: empty = a primary, always publishes

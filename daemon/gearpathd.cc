@@ -13,6 +13,7 @@
 
 #include "daemon/dds_bridge.h"
 #include "daemon/dds_setup.h"
+#include "daemon/lane_pool.h"
 #include "idl/dds/accel_block_wire.h"
 #include "daemon/machine_id_filter.h"
 #include "daemon/machine_runtime.h"
@@ -63,6 +64,43 @@ struct SaveMark {
   bool failing = false;                           // the last save failed (said once)
 };
 
+// One block taken from DDS, waiting for its machine's worker.
+struct QueuedBlock {
+  dds::Owned<gearpath_AccelBlock> sample;
+  dds::SampleInfo info{};
+  std::uint64_t dropped_before = 0;  // blocks of the machine dropped (queue full) just before
+};
+using BlockLanes = LanePool<QueuedBlock>;
+
+// A machine as the worker pool sees it. The reader thread owns the map of lanes and changes
+// `runtime` only while the pool is paused; a worker handles one block of a lane at a time.
+struct MachineLane : BlockLanes::Lane {
+  MachineLane(std::string machine_id, std::size_t capacity)
+      : Lane(capacity), id(std::move(machine_id)) {}
+  const std::string id;
+  MachineRuntime* runtime = nullptr;
+  std::uint64_t pending_drops = 0;  // reader thread: dropped since the last queued block
+  std::mutex processor_mutex;       // held while the processor is used (a block, a save)
+  SaveMark mark;                    // under processor_mutex
+  std::mutex counters_mutex;        // the worker writes the counters, Status reads them
+  MachineCounters counters;
+};
+
+// What a worker fills and publishes: its own, so workers share no sample and allocate nothing
+// per block once the samples are sized.
+struct WorkerScratch {
+  std::vector<ChannelInfo> channels;
+  dds::Owned<gearpath_DominantPath> dominant;
+  dds::Owned<gearpath_SuspectedGear> gear;
+  dds::Owned<gearpath_EnvelopeIndicators> indicators;
+  dds::Owned<gearpath_ConditionIndicators> condition;
+};
+
+std::size_t WorkerCount(const DaemonConfig& c) {
+  if (c.workers > 0) return static_cast<std::size_t>(c.workers);
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
 // The block topic with the machine filter set, ready for the block reader.
 const dds::Topic<gearpath_AccelBlock>& FilteredByMachine(dds::Topic<gearpath_AccelBlock>& topic,
                                                          MachineIdFilter& filter) {
@@ -75,6 +113,7 @@ struct Gearpathd::Impl {
       : options(std::move(opts)),
         store(std::move(state_store)),
         lifecycle_config(first.config),
+        frf_registry(first.machines.frf_registry),
         domain(first.config.domain_id, DaemonDomainConfig(first.config)),
         participant(domain, DaemonSecurityFiles(first.config)),
         block_topic(participant, first.config.topics.accel_block),
@@ -92,9 +131,20 @@ struct Gearpathd::Impl {
         status_writer(status_topic),
         blocks_ready(block_reader),
         guard(participant),
-        waitset(participant) {
+        waitset(participant),
+        queue_capacity(static_cast<std::size_t>(first.config.queue_blocks)),
+        workers(WorkerCount(first.config)),
+        scratch(workers),
+        // Spares: enough buffers for every worker's next block and a burst, not every queue.
+        pool(std::make_unique<BlockLanes>(
+            workers, 2 * workers + 2,
+            [this](std::size_t w, BlockLanes::Lane& lane, QueuedBlock& block) {
+              HandleBlock(scratch[w], static_cast<MachineLane&>(lane), block);
+            })) {
     waitset.Attach(blocks_ready, kBlocksToken);
     waitset.Attach(guard, kGuardToken);
+    spdlog::info("processing on {} worker thread(s), up to {} block(s) queued per machine",
+                 workers, queue_capacity);
     Adopt(std::move(first));
     samples.resize(1);
     infos.resize(1);
@@ -111,13 +161,16 @@ struct Gearpathd::Impl {
   void Adopt(Generation generation);
   void AdoptPending();
   void DrainBlocks();
-  void HandleBlock(const gearpath_AccelBlock& sample, const dds::SampleInfo& info);
+  void Dispatch();
+  void HandleBlock(WorkerScratch& ws, MachineLane& lane, QueuedBlock& block);
+  void CountDrops(MachineLane& lane, std::uint64_t dropped, std::uint64_t before_sequence);
+  void SnapshotCounters(bool new_period);
   void Housekeeping(bool force_status);
   void PublishStatus(gearpath_DaemonState state);
   void LogThroughput();
-  void Resume(MachineRuntime& machine, MachineSet& previous);
-  void MarkChanged(const MachineRuntime& machine, FaultState verdict_state);
-  void SaveMachine(const MachineRuntime& machine);
+  void Resume(MachineLane& lane, MachineSet& previous);
+  void MarkChanged(MachineLane& lane, FaultState verdict_state);
+  void SaveMachine(MachineLane& lane);
   void SaveDueMachines(bool all);
   void WatchPrimary();
 
@@ -125,6 +178,8 @@ struct Gearpathd::Impl {
   std::optional<MachineStateStore> store;  // none: nothing is kept across restarts
   MachineIdFilter machine_filter;  // before the block reader, which it filters
   DaemonConfig lifecycle_config;  // the configuration in force, as the lifecycle thread knows it
+  // Where reloads get their FRF sets: unchanged ones stay shared with the running machines.
+  std::shared_ptr<FrfRegistry> frf_registry;
   const Clock::time_point started = Clock::now();
 
   dds::Domain domain;
@@ -148,6 +203,10 @@ struct Gearpathd::Impl {
 
   // Shared between the threads.
   std::atomic<bool> stop_requested{false};
+  std::atomic<bool> publishing{true};  // hot standby: results are published only while set
+  std::atomic<std::uint64_t> results_withheld{0};
+  std::atomic<std::uint64_t> publish_failures{0};
+  std::atomic<std::uint64_t> state_save_failures{0};
   std::atomic<bool> loop_failed{false};
   std::atomic<int> state{gearpath_STARTING};
   std::mutex pending_mutex;
@@ -160,53 +219,53 @@ struct Gearpathd::Impl {
   Clock::duration status_period{};
   Clock::duration throughput_period{};
   Clock::duration watchdog_period{};  // half of systemd's WatchdogSec; zero: no watchdog
+  // The lanes' counters as of the last Status or summary (SnapshotCounters).
   std::map<std::string, MachineCounters, std::less<>> counters;
   std::map<std::string, MachineCounters, std::less<>> counters_at_last_summary;
-  std::map<std::string, SaveMark, std::less<>> save_marks;
   Clock::duration save_period{};
-  std::uint64_t state_save_failures = 0;
-  // Hot standby: results are published only while `publishing`; a primary always publishes.
+  // Hot standby (`publishing` above); a primary always publishes.
   std::string primary_id;
   Clock::duration takeover_after{};
-  bool publishing = true;
   Clock::time_point primary_last_seen{};
   Clock::time_point next_primary_check{};
   bool primary_seen = false;  // its Status has arrived at least once (logged once)
-  std::uint64_t results_withheld = 0;
   std::vector<dds::Owned<gearpath_Status>> status_samples;
   std::vector<dds::SampleInfo> status_infos;
   std::uint64_t foreign_blocks = 0;
   std::uint64_t foreign_blocks_at_last_summary = 0;
-  std::uint64_t publish_failures = 0;
   Clock::time_point next_status{};
   Clock::time_point next_throughput{};
   Clock::time_point next_watchdog{};
   Clock::time_point last_summary = Clock::now();
   std::vector<dds::Owned<gearpath_AccelBlock>> samples;
   std::vector<dds::SampleInfo> infos;
-  std::vector<ChannelInfo> channel_scratch;
-  dds::Owned<gearpath_DominantPath> dominant_sample;
-  dds::Owned<gearpath_SuspectedGear> gear_sample;
-  dds::Owned<gearpath_EnvelopeIndicators> indicators_sample;
-  dds::Owned<gearpath_ConditionIndicators> condition_sample;
+  QueuedBlock offered;  // the block being handed to its lane
   dds::Owned<gearpath_Status> status_sample;
+
+  // The worker pool, last: its threads stop before anything they use goes.
+  const std::size_t queue_capacity;  // daemon.queue_blocks at start-up
+  const std::size_t workers;         // daemon.workers at start-up
+  std::vector<WorkerScratch> scratch;  // one per worker
+  std::map<std::string, std::unique_ptr<MachineLane>, std::less<>> lanes;  // reader thread
+  std::unique_ptr<BlockLanes> pool;
 };
 
 // A machine of a new generation takes over what its predecessor learned (reload) or what was
-// saved (start-up, or a machine added by a reload); else it learns.
-void Gearpathd::Impl::Resume(MachineRuntime& m, MachineSet& previous) {
+// saved (start-up, or a machine added by a reload); else it learns. The pool is paused.
+void Gearpathd::Impl::Resume(MachineLane& lane, MachineSet& previous) {
+  MachineRuntime& m = *lane.runtime;
   if (auto old = previous.machines.find(m.id); old != previous.machines.end()) {
     Status st = m.processor.ImportLearnedState(old->second->processor.ExportLearnedState());
     if (!st) {
       spdlog::warn("{}: the reloaded configuration changes what the baseline measures ({}); "
                    "learning a new baseline",
                    m.id, st.error());
-      save_marks[m.id] = SaveMark{FaultState::kLearning, true, Clock::now(), false};
+      lane.mark = SaveMark{FaultState::kLearning, true, Clock::now(), false};
     }
     return;  // counters and save marks carry over as they are
   }
-  counters[m.id] = MachineCounters{};
-  save_marks[m.id] = SaveMark{};
+  lane.counters = MachineCounters{};
+  lane.mark = SaveMark{};
   if (!store) return;
   auto saved = store->Load(m.id);
   if (!saved) {
@@ -219,14 +278,14 @@ void Gearpathd::Impl::Resume(MachineRuntime& m, MachineSet& previous) {
     return;
   }
   SavedMachine& s = **saved;
-  counters[m.id] = std::move(s.counters);
+  lane.counters = std::move(s.counters);
   const double age_s = static_cast<double>(RealtimeNs() - s.saved_at_ns) * 1e-9;
   if (Status st = m.processor.ImportLearnedState(s.learned); !st) {
     spdlog::warn("{}: saved state not used ({}); learning a new baseline (counters kept)", m.id,
                  st.error());
     return;
   }
-  save_marks[m.id].last_state = s.learned.alarm.state;
+  lane.mark.last_state = s.learned.alarm.state;
   spdlog::info("{}: resumed from {} (saved {:.0f} s ago): baseline {} of {} blocks, verdict "
                "state {}",
                m.id, store->PathOf(m.id), age_s, m.processor.baseline_blocks_learned(),
@@ -235,15 +294,38 @@ void Gearpathd::Impl::Resume(MachineRuntime& m, MachineSet& previous) {
 
 void Gearpathd::Impl::Adopt(Generation generation) {
   const DaemonConfig& c = generation.config;
+  if (static_cast<std::size_t>(c.queue_blocks) != queue_capacity || WorkerCount(c) != workers) {
+    spdlog::warn("daemon.workers and daemon.queue_blocks take effect at the next start: still "
+                 "{} worker(s), {} block(s) per machine",
+                 workers, queue_capacity);
+  }
+  // No block is processed while the machines change hands; blocks queued meanwhile wait.
+  pool->Pause();
   MachineSet previous = std::move(machines);
   machines = std::move(generation.machines);
   machine_ids.clear();
   for (const auto& m : c.machines) machine_ids.push_back(m.id);
   machine_filter.Admit(machine_ids);
-  for (auto& [id, m] : machines.machines) Resume(*m, previous);
-  // Counters and save marks of machines no longer configured go.
+  // Lanes of machines no longer configured go, with their counters and queued blocks.
+  for (auto it = lanes.begin(); it != lanes.end();) {
+    if (machines.machines.contains(it->first)) {
+      ++it;
+      continue;
+    }
+    foreign_blocks += pool->Detach(*it->second);
+    it = lanes.erase(it);
+  }
   std::erase_if(counters, [&](const auto& e) { return !machines.machines.contains(e.first); });
-  std::erase_if(save_marks, [&](const auto& e) { return !machines.machines.contains(e.first); });
+  for (auto& [id, m] : machines.machines) {
+    auto lane = lanes.find(id);
+    if (lane == lanes.end()) {
+      lane = lanes.emplace(id, std::make_unique<MachineLane>(id, queue_capacity)).first;
+    }
+    pool->Attach(*lane->second, machines.machines.size());
+    lane->second->runtime = m.get();
+    Resume(*lane->second, previous);
+  }
+  pool->Resume();
   save_period = Seconds(c.state_save_period_s);
   if (c.standby_primary != primary_id) {
     primary_id = c.standby_primary;
@@ -277,7 +359,18 @@ void Gearpathd::Impl::AdoptPending() {
   spdlog::info("reload: now running {} machine(s)", machine_ids.size());
 }
 
+// Copies every lane's counters for Status and the summary; a new period restarts the
+// rejection lines' rate limit.
+void Gearpathd::Impl::SnapshotCounters(bool new_period) {
+  for (auto& [id, lane] : lanes) {
+    std::lock_guard lock(lane->counters_mutex);
+    if (new_period) lane->counters.rejection_lines_this_period = 0;
+    counters[id] = lane->counters;
+  }
+}
+
 void Gearpathd::Impl::PublishStatus(gearpath_DaemonState s) {
+  SnapshotCounters(false);
   StatusFigures figures;
   figures.daemon_id = daemon_id;
   figures.state = s;
@@ -293,6 +386,7 @@ void Gearpathd::Impl::PublishStatus(gearpath_DaemonState s) {
 void Gearpathd::Impl::LogThroughput() {
   const auto now = Clock::now();
   const double seconds = std::max(1e-9, duration<double>(now - last_summary).count());
+  SnapshotCounters(true);
   std::string line;
   for (const auto& id : machine_ids) {
     const MachineCounters& c = counters[id];
@@ -334,7 +428,6 @@ void Gearpathd::Impl::LogThroughput() {
   NotifySystemd(fmt::format("STATUS=running: {} machine(s), {} block(s) processed, {} "
                             "rejected since start",
                             machine_ids.size(), processed, rejected));
-  for (auto& [id, c] : counters) c.rejection_lines_this_period = 0;
   counters_at_last_summary = counters;
   foreign_blocks_at_last_summary = foreign_now;
   last_summary = now;
@@ -392,13 +485,14 @@ void Gearpathd::Impl::WatchPrimary() {
   next_primary_check = now + takeover_after / 4;
 }
 
-void Gearpathd::Impl::MarkChanged(const MachineRuntime& m, FaultState verdict_state) {
-  SaveMark& mark = save_marks[m.id];
+// Worker or reader, with the lane's processor_mutex held.
+void Gearpathd::Impl::MarkChanged(MachineLane& lane, FaultState verdict_state) {
+  SaveMark& mark = lane.mark;
   if (verdict_state != mark.last_state) {
     // A verdict state that changes (learned, raised, cleared) is saved at once: a restart
     // must resume exactly that judgement.
     mark.last_state = verdict_state;
-    SaveMachine(m);
+    SaveMachine(lane);
     return;
   }
   if (!mark.dirty) {
@@ -407,108 +501,163 @@ void Gearpathd::Impl::MarkChanged(const MachineRuntime& m, FaultState verdict_st
   }
 }
 
-void Gearpathd::Impl::SaveMachine(const MachineRuntime& m) {
-  SaveMark& mark = save_marks[m.id];
+// With the lane's processor_mutex held (its processor is idle).
+void Gearpathd::Impl::SaveMachine(MachineLane& lane) {
+  SaveMark& mark = lane.mark;
   mark.dirty = false;
   if (!store) return;
   SavedMachine saved;
-  saved.machine_id = m.id;
+  saved.machine_id = lane.id;
   saved.saved_at_ns = RealtimeNs();
-  saved.learned = m.processor.ExportLearnedState();
-  saved.counters = counters[m.id];
+  saved.learned = lane.runtime->processor.ExportLearnedState();
+  {
+    std::lock_guard lock(lane.counters_mutex);
+    saved.counters = lane.counters;
+  }
   if (Status st = store->Save(saved); !st) {
     ++state_save_failures;
-    if (!mark.failing) spdlog::error("{}: state not saved: {} (said once until it works)", m.id,
-                                     st.error());
+    if (!mark.failing) spdlog::error("{}: state not saved: {} (said once until it works)",
+                                     lane.id, st.error());
     mark.failing = true;
     return;
   }
-  if (mark.failing) spdlog::info("{}: state saved again", m.id);
+  if (mark.failing) spdlog::info("{}: state saved again", lane.id);
   mark.failing = false;
 }
 
+// Reader thread. A machine whose worker holds it now is saved at a later round (never waits).
 void Gearpathd::Impl::SaveDueMachines(bool all) {
   const auto now = Clock::now();
-  for (auto& [id, m] : machines.machines) {
-    const SaveMark& mark = save_marks[id];
-    if (mark.dirty && (all || now - mark.dirty_since >= save_period)) SaveMachine(*m);
+  for (auto& [id, lane] : lanes) {
+    std::unique_lock lock(lane->processor_mutex, std::defer_lock);
+    if (all) {
+      lock.lock();
+    } else if (!lock.try_lock()) {
+      continue;
+    }
+    const SaveMark& mark = lane->mark;
+    if (mark.dirty && (all || now - mark.dirty_since >= save_period)) SaveMachine(*lane);
   }
 }
 
-void Gearpathd::Impl::HandleBlock(const gearpath_AccelBlock& sample,
-                                  const dds::SampleInfo& info) {
-  const std::string_view id = dds::GetString(sample.machine_id);
-  const auto it = machines.machines.find(id);
-  if (it == machines.machines.end()) {
-    // Let through by the machine filter just before a reload changed the machines: not ours
-    // to judge, so not a rejection (the filter logs foreign ids; this only counts them).
-    ++foreign_blocks;
-    return;
+// Worker thread, with the lane's processor_mutex held: blocks that found the queue full are
+// rejections (reason queue_full) of blocks numbered before this one, so the gap they leave is
+// not counted as lost.
+void Gearpathd::Impl::CountDrops(MachineLane& lane, std::uint64_t dropped,
+                                 std::uint64_t before_sequence) {
+  constexpr std::string_view kReason = "queue_full";
+  bool log = false;
+  {
+    std::lock_guard lock(lane.counters_mutex);
+    MachineCounters& c = lane.counters;
+    c.received += dropped;
+    c.rejected += dropped;
+    c.rejected_in_gap += dropped;
+    auto r = c.rejected_by_reason.find(kReason);
+    if (r == c.rejected_by_reason.end()) r = c.rejected_by_reason.emplace(kReason, 0).first;
+    r->second += dropped;
+    c.last_rejection = fmt::format("{}: {} block(s) arrived while {} were queued", kReason,
+                                   dropped, queue_capacity);
+    if (c.rejection_lines_this_period < kRejectionLinesPerPeriod) {
+      ++c.rejection_lines_this_period;
+      log = true;
+    } else {
+      ++c.rejection_lines_suppressed;
+    }
   }
-  MachineRuntime& m = *it->second;
-  MachineCounters& c = counters[m.id];
-  ++c.received;
-  const AccelBlockView view = dds::ViewOfWireBlock(sample, channel_scratch);
+  if (log) {
+    spdlog::warn("{}: {} block(s) dropped before block {}: processing fell behind (queue of {} "
+                 "blocks full)",
+                 lane.id, dropped, before_sequence, queue_capacity);
+  }
+}
+
+// Worker thread: one block of one machine, start to publish.
+void Gearpathd::Impl::HandleBlock(WorkerScratch& ws, MachineLane& lane, QueuedBlock& block) {
+  if (!block.info.valid_data) return;
+  const gearpath_AccelBlock& sample = *block.sample;
+  std::lock_guard processor_lock(lane.processor_mutex);
+  MachineRuntime& m = *lane.runtime;
+  MachineCounters& c = lane.counters;  // written under counters_mutex: Status reads it
+  if (block.dropped_before > 0) CountDrops(lane, block.dropped_before, sample.sequence_number);
+  const AccelBlockView view = dds::ViewOfWireBlock(sample, ws.channels);
   const ProcessOutcome outcome = m.processor.Process(view, m.result);
   if (!outcome.accepted()) {
     const std::string_view reason = ToString(outcome.reason);
-    ++c.rejected;
-    // A rejected block does not advance the sequence tracker, so the next accepted block will
-    // see its number as part of a gap; remember it so that it is not counted as lost too.
-    if (outcome.reason != RejectReason::kDuplicateSequence &&
-        outcome.reason != RejectReason::kOutOfOrderSequence) {
-      ++c.rejected_in_gap;
+    bool log = false;
+    {
+      std::lock_guard lock(lane.counters_mutex);
+      ++c.received;
+      ++c.rejected;
+      // A rejected block does not advance the sequence tracker, so the next accepted block
+      // will see its number as part of a gap; remember it so that it is not counted as lost.
+      if (outcome.reason != RejectReason::kDuplicateSequence &&
+          outcome.reason != RejectReason::kOutOfOrderSequence) {
+        ++c.rejected_in_gap;
+      }
+      auto r = c.rejected_by_reason.find(reason);
+      if (r == c.rejected_by_reason.end()) r = c.rejected_by_reason.emplace(reason, 0).first;
+      ++r->second;
+      c.last_rejection = fmt::format("{}: {}", reason, outcome.message.view());
+      // A peer sending bad blocks must not flood the log: the first kRejectionLinesPerPeriod
+      // of each machine per throughput period are logged, the rest counted in the summary.
+      if (c.rejection_lines_this_period < kRejectionLinesPerPeriod) {
+        ++c.rejection_lines_this_period;
+        log = true;
+      } else {
+        ++c.rejection_lines_suppressed;
+      }
     }
-    auto r = c.rejected_by_reason.find(reason);
-    if (r == c.rejected_by_reason.end()) r = c.rejected_by_reason.emplace(reason, 0).first;
-    ++r->second;
-    c.last_rejection = fmt::format("{}: {}", reason, outcome.message.view());
-    MarkChanged(m, save_marks[m.id].last_state);  // counters changed
-    // A peer sending bad blocks must not flood the log: the first kRejectionLinesPerPeriod
-    // of each machine per throughput period are logged, the rest counted in the summary.
-    if (c.rejection_lines_this_period < kRejectionLinesPerPeriod) {
-      ++c.rejection_lines_this_period;
+    MarkChanged(lane, lane.mark.last_state);  // counters changed
+    if (log) {
       spdlog::warn("{}: block {} rejected ({}): {}", m.id, view.sequence, reason,
                    outcome.message.view());
-    } else {
-      ++c.rejection_lines_suppressed;
     }
     return;
   }
   const BlockResult& r = m.result;
-  ++c.processed;
-  MarkChanged(m, r.verdict.state);
-  const std::uint64_t explained = std::min(r.sequence_gap, c.rejected_in_gap);
-  c.rejected_in_gap = 0;
-  if (r.sequence_gap > explained) {
-    c.lost += r.sequence_gap - explained;
-    spdlog::warn("{}: {} block(s) missing before block {}", m.id, r.sequence_gap - explained,
-                 r.sequence);
+  std::uint64_t lost = 0;
+  bool first_omission = false;
+  const OmittedIndicators omitted =
+      FillConditionIndicators(m.id, r, m.indicator_names, *ws.condition);
+  {
+    std::lock_guard lock(lane.counters_mutex);
+    ++c.received;
+    ++c.processed;
+    const std::uint64_t explained = std::min(r.sequence_gap, c.rejected_in_gap);
+    c.rejected_in_gap = 0;
+    lost = r.sequence_gap - explained;
+    c.lost += lost;
+    if (omitted.any()) {
+      // Counted always, said once per machine: the sample itself carries the counts.
+      first_omission = c.indicators_omitted == 0;
+      c.indicators_omitted += omitted.sets + omitted.values + omitted.names;
+    }
+    c.last_alpha = r.regularisation.alpha_median;
+    c.last_condition = r.regularisation.condition_max;
+    c.last_residual = r.regularisation.relative_residual;
+  }
+  MarkChanged(lane, r.verdict.state);
+  if (lost > 0) {
+    spdlog::warn("{}: {} block(s) missing before block {}", m.id, lost, r.sequence);
   }
   if (r.sequence_restarted) {
     spdlog::info("{}: sequence restarted at block {} (publisher restart)", m.id, r.sequence);
   }
-  FillDominantPath(m.id, r, *dominant_sample);
-  FillSuspectedGear(m.id, r, *gear_sample);
-  FillEnvelopeIndicators(m.id, r, *indicators_sample);
-  const OmittedIndicators omitted =
-      FillConditionIndicators(m.id, r, m.indicator_names, *condition_sample);
-  if (omitted.any()) {
-    // Counted always, said once per machine: the sample itself carries the counts.
-    if (c.indicators_omitted == 0) {
-      spdlog::warn("{}: block {}: ConditionIndicators exceeds the IDL bounds ({} sets > {}, "
-                   "{} values > {} per set, {} names > {} chars): left out and counted "
-                   "(sets_omitted, values_omitted); further blocks are counted silently",
-                   m.id, r.sequence, omitted.sets, gearpath_MAX_INDICATOR_SETS, omitted.values,
-                   gearpath_MAX_INDICATORS_PER_SET, omitted.names,
-                   gearpath_INDICATOR_NAME_LENGTH);
-    }
-    c.indicators_omitted += omitted.sets + omitted.values + omitted.names;
+  if (first_omission) {
+    spdlog::warn("{}: block {}: ConditionIndicators exceeds the IDL bounds ({} sets > {}, "
+                 "{} values > {} per set, {} names > {} chars): left out and counted "
+                 "(sets_omitted, values_omitted); further blocks are counted silently",
+                 m.id, r.sequence, omitted.sets, gearpath_MAX_INDICATOR_SETS, omitted.values,
+                 gearpath_MAX_INDICATORS_PER_SET, omitted.names, gearpath_INDICATOR_NAME_LENGTH);
   }
-  if (publishing) {
-    for (Status st : {dominant_writer.Write(*dominant_sample), gear_writer.Write(*gear_sample),
-                      indicators_writer.Write(*indicators_sample),
-                      condition_writer.Write(*condition_sample)}) {
+  FillDominantPath(m.id, r, *ws.dominant);
+  FillSuspectedGear(m.id, r, *ws.gear);
+  FillEnvelopeIndicators(m.id, r, *ws.indicators);
+  if (publishing.load()) {
+    for (Status st : {dominant_writer.Write(*ws.dominant), gear_writer.Write(*ws.gear),
+                      indicators_writer.Write(*ws.indicators),
+                      condition_writer.Write(*ws.condition)}) {
       if (!st) {
         ++publish_failures;
         spdlog::error("{}: result of block {} not published: {}", m.id, r.sequence, st.error());
@@ -517,18 +666,39 @@ void Gearpathd::Impl::HandleBlock(const gearpath_AccelBlock& sample,
   } else {
     ++results_withheld;  // standing by: the primary publishes this block's results
   }
-  c.last_alpha = r.regularisation.alpha_median;
-  c.last_condition = r.regularisation.condition_max;
-  c.last_residual = r.regularisation.relative_residual;
-  if (info.source_timestamp > 0) {
+  if (block.info.source_timestamp > 0) {
     // Writer's timestamp to results published: includes the time the block waited in the
-    // reader's history, which is what a late result costs the plant.
-    c.latency_last_ms = std::max(0.0, static_cast<double>(RealtimeNs() - info.source_timestamp) *
-                                          1e-6);
-    c.latency_max_ms = std::max(c.latency_max_ms, c.latency_last_ms);
+    // reader's history and its machine's queue, which is what a late result costs the plant.
+    const double latency_ms =
+        std::max(0.0, static_cast<double>(RealtimeNs() - block.info.source_timestamp) * 1e-6);
+    std::lock_guard lock(lane.counters_mutex);
+    c.latency_last_ms = latency_ms;
+    c.latency_max_ms = std::max(c.latency_max_ms, latency_ms);
   }
   spdlog::debug("{}: block {} -> path {}, {} {}", m.id, r.sequence, r.dominant_path_name,
                 ToString(r.verdict.state), r.verdict.gear_name);
+}
+
+// Reader thread: hands the taken block to its machine's lane and never waits for processing.
+void Gearpathd::Impl::Dispatch() {
+  const auto it = lanes.find(dds::GetString(samples[0]->machine_id));
+  if (it == lanes.end()) {
+    // Let through by the machine filter just before a reload changed the machines: not ours
+    // to judge, so not a rejection (the filter logs foreign ids; this only counts them).
+    ++foreign_blocks;
+    return;
+  }
+  MachineLane& lane = *it->second;
+  offered.sample = std::move(samples[0]);
+  offered.info = infos[0];
+  offered.dropped_before = lane.pending_drops;
+  if (pool->Offer(lane, offered)) {
+    lane.pending_drops = 0;
+    pool->TakeSpare(offered);  // a handled block's buffers, for the next Take
+  } else {
+    ++lane.pending_drops;  // counted and logged with the machine's next queued block
+  }
+  samples[0] = std::move(offered.sample);
 }
 
 void Gearpathd::Impl::DrainBlocks() {
@@ -539,7 +709,7 @@ void Gearpathd::Impl::DrainBlocks() {
       return;
     }
     if (*taken == 0) return;
-    if (infos[0].valid_data) HandleBlock(*samples[0], infos[0]);
+    if (infos[0].valid_data) Dispatch();
     AdoptPending();  // a reload takes effect between two blocks
     Housekeeping(false);
   }
@@ -565,6 +735,7 @@ void Gearpathd::Impl::Loop() {
     DrainBlocks();
     Housekeeping(false);
   }
+  pool->Stop();  // the blocks in hand are finished; queued ones are left
   SaveDueMachines(true);
   LogThroughput();  // the last period's figures, rate-limited lines included
   PublishStatus(gearpath_STOPPING);  // the last word: subscribers see a clean stop
@@ -588,7 +759,7 @@ void Gearpathd::Impl::Reload() {
   } else if (ResolveStateDirectory(*config) != ResolveStateDirectory(lifecycle_config)) {
     failure = "state.directory cannot change on reload (restart the daemon)";
   } else {
-    auto machines_built = BuildMachines(*config);
+    auto machines_built = BuildMachines(*config, frf_registry);
     if (!machines_built) {
       failure = machines_built.error();
     } else {

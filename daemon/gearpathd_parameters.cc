@@ -106,7 +106,17 @@ ParamSpec DaemonSection() {
             {"trace", "debug", "info", "warn", "error", "critical", "off"}, "info"),
        Number("status_period_s", "Period of the Status topic, seconds.", 0.1, 3600.0, 1.0),
        Number("throughput_log_period_s", "Period of the throughput summary in the log, seconds.",
-              1.0, 86400.0, 60.0)});
+              1.0, 86400.0, 60.0),
+       Integer("workers",
+               "Processing threads: machines are processed in parallel, each machine's blocks "
+               "one at a time in arrival order. 0: one per hardware thread. Read at start-up "
+               "(a reload keeps the running pool).",
+               0, 256, 0),
+       Integer("queue_blocks",
+               "Blocks queued per machine while its previous block is processed; a block that "
+               "arrives to a full queue is dropped, counted as rejected (`queue_full`) and "
+               "logged, so the DDS reader never waits for processing. Read at start-up.",
+               1, 1024, 32)});
 }
 
 ParamSpec StandbySection() {
