@@ -40,6 +40,9 @@ Clock::duration Seconds(double s) { return duration_cast<Clock::duration>(durati
 constexpr dds_attach_t kBlocksToken = 1;
 constexpr dds_attach_t kGuardToken = 2;
 constexpr std::uint64_t kRejectionLinesPerPeriod = 10;
+// How long the reader waits at a time for room in a full machine queue before it runs the
+// housekeeping (Status, watchdog) and waits again.
+constexpr std::chrono::milliseconds kRoomWait{100};
 
 // A configuration and its built machines, handed from the lifecycle thread to the loop.
 struct Generation {
@@ -679,7 +682,12 @@ void Gearpathd::Impl::HandleBlock(WorkerScratch& ws, MachineLane& lane, QueuedBl
                 ToString(r.verdict.state), r.verdict.gear_name);
 }
 
-// Reader thread: hands the taken block to its machine's lane and never waits for processing.
+// Reader thread: hands the taken block to its machine's lane. When the lane is full (the
+// machine is a whole queue behind) it waits for room instead of dropping: the reader then
+// takes no more blocks, their writers' reliable histories fill and DDS flow control slows them,
+// so a burst such as `gearpath replay --fast` loses nothing (docs/topics.md). Only a stop drops
+// the block (counted as queue_full). Lanes are detached and the pool paused or stopped by this
+// thread only, so none of that can happen during the wait.
 void Gearpathd::Impl::Dispatch() {
   const auto it = lanes.find(dds::GetString(samples[0]->machine_id));
   if (it == lanes.end()) {
@@ -692,7 +700,15 @@ void Gearpathd::Impl::Dispatch() {
   offered.sample = std::move(samples[0]);
   offered.info = infos[0];
   offered.dropped_before = lane.pending_drops;
-  if (pool->Offer(lane, offered)) {
+  bool queued = pool->Offer(lane, offered);
+  while (!queued && !stop_requested.load()) {
+    if (!pool->WaitForRoom(lane, kRoomWait)) {
+      Housekeeping(false);  // Status and the watchdog keep going while the machine catches up
+      continue;
+    }
+    queued = pool->Offer(lane, offered);
+  }
+  if (queued) {
     lane.pending_drops = 0;
     pool->TakeSpare(offered);  // a handled block's buffers, for the next Take
   } else {

@@ -113,9 +113,9 @@ ParamSpec DaemonSection() {
                "(a reload keeps the running pool).",
                0, 256, 0),
        Integer("queue_blocks",
-               "Blocks queued per machine while its previous block is processed; a block that "
-               "arrives to a full queue is dropped, counted as rejected (`queue_full`) and "
-               "logged, so the DDS reader never waits for processing. Read at start-up.",
+               "Blocks queued per machine while its previous block is processed; when a "
+               "machine's queue is full the DDS reader waits for room, so DDS flow control "
+               "slows the writers and nothing is lost (docs/topics.md). Read at start-up.",
                1, 1024, 32)});
 }
 

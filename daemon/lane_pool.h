@@ -105,6 +105,16 @@ class LanePool {
     return true;
   }
 
+  // Waits up to `timeout` for `lane` to have room (a worker took one of its items), or for the
+  // pool to stop or the lane to be detached; true when there is room.
+  template <class Duration>
+  bool WaitForRoom(Lane& lane, Duration timeout) {
+    std::unique_lock lock(mutex_);
+    room_.wait_for(lock, timeout,
+                   [&] { return stopping_ || !lane.attached_ || lane.size_ < lane.ring_.size(); });
+    return lane.attached_ && lane.size_ < lane.ring_.size();
+  }
+
   // Moves a handled item's buffers into `out` when there is one (else leaves `out` as it is).
   void TakeSpare(Item& out) {
     std::lock_guard lock(mutex_);
@@ -134,6 +144,7 @@ class LanePool {
       stopping_ = true;
     }
     work_ready_.notify_all();
+    room_.notify_all();
     for (auto& t : threads_) t.join();
     threads_.clear();
   }
@@ -169,6 +180,7 @@ class LanePool {
       --lane->size_;
       ++in_flight_;
       lock.unlock();
+      room_.notify_all();
       handler_(worker, *lane, current);
       lock.lock();
       --in_flight_;
@@ -189,6 +201,7 @@ class LanePool {
   std::mutex mutex_;
   std::condition_variable work_ready_;
   std::condition_variable idle_;
+  std::condition_variable room_;  // a lane's item was taken (WaitForRoom)
   std::vector<Lane*> ready_ = std::vector<Lane*>(1, nullptr);  // ring of lanes with work
   std::size_t ready_head_ = 0;
   std::size_t ready_count_ = 0;

@@ -1,6 +1,6 @@
 // LanePool: every item of every lane handled, each lane's in order and never on two workers at
 // once; a full lane refuses instead of blocking; a paused pool runs nothing. Tests wait on
-// conditions with a watchdog, never on timing.
+// conditions with a watchdog, never on timing (the one short wait below must time out).
 #include "daemon/lane_pool.h"
 
 #include <gtest/gtest.h>
@@ -108,6 +108,27 @@ TEST(LanePoolTest, AFullLaneRefusesWithoutBlockingAndAPausedPoolHandlesNothing) 
   item.sequence = 4;
   EXPECT_TRUE(pool.Offer(lane, item));  // room again
   ASSERT_TRUE(done.WaitFor(4)) << "watchdog";
+}
+
+TEST(LanePoolTest, WaitForRoomReturnsOnceAWorkerTookAnItemOfTheFullLane) {
+  Done done;
+  LanePool<Item> pool(1, 8, [&](std::size_t, LanePool<Item>::Lane&, Item&) { done.Add(); });
+  TestLane lane(2);
+  pool.Attach(lane, 1);
+  pool.Pause();
+  Item item;
+  for (int i = 0; i < 2; ++i) {
+    item.sequence = i;
+    ASSERT_TRUE(pool.Offer(lane, item));
+  }
+  // Paused: nothing is taken, so the wait times out and says there is no room.
+  EXPECT_FALSE(pool.WaitForRoom(lane, 10ms));
+  pool.Resume();
+  // The worker takes an item: room, well before the watchdog.
+  EXPECT_TRUE(pool.WaitForRoom(lane, kWatchdog)) << "watchdog";
+  item.sequence = 2;
+  EXPECT_TRUE(pool.Offer(lane, item));
+  ASSERT_TRUE(done.WaitFor(3)) << "watchdog";
 }
 
 TEST(LanePoolTest, ADetachedLaneGivesBackWhatItHeldAndIsNotServedAnyMore) {
