@@ -325,18 +325,7 @@ void AddBridgeCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--once", opt->once, "One directory scan, or one TCP connection, then exit");
   cmd->add_option("--topic", opt->topic, "Block topic name (default gearpath/AccelBlock)");
-  cmd->add_option("--domain", opt->domain_id, "DDS domain id")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 232));
-  AddDdsOptions(cmd, &opt->dds);
-  cmd->add_option("--subscribers", opt->subscribers,
-                  "Wait for this many subscribers before the first block")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--wait", opt->wait_s,
-                  "Seconds to wait for the subscribers before the first block")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+  AddPublishingOptions(cmd, &opt->domain_id, &opt->dds, &opt->subscribers, &opt->wait_s);
   cmd->add_flag("--quiet,-q", opt->quiet, "No per-file / per-stream lines on stderr");
   cmd->callback([opt, &exit_code] {
     try {

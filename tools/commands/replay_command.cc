@@ -215,17 +215,7 @@ void AddReplayCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--shaft-speed", opt->in.shaft_speed_hz,
                   "Continuous inputs: input-shaft speed in Hz to send with every block")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--domain", opt->domain_id, "DDS domain id")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 232));
-  AddDdsOptions(cmd, &opt->dds);
-  cmd->add_option("--subscribers", opt->subscribers,
-                  "Wait for this many subscribers before the first block")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--wait", opt->wait_s, "Seconds to wait for the subscribers")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+  AddPublishingOptions(cmd, &opt->domain_id, &opt->dds, &opt->subscribers, &opt->wait_s);
   cmd->add_option("--write-recording", opt->write_recording,
                   "Write the blocks as a recording into this directory instead of publishing");
   cmd->add_flag("--quiet,-q", opt->quiet, "No summary or progress on stderr");

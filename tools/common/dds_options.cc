@@ -20,6 +20,21 @@ void AddDdsOptions(CLI::App* cmd, DdsOptions* options) {
                   "dds.security; docs/deployment.md)");
 }
 
+void AddPublishingOptions(CLI::App* cmd, int* domain_id, DdsOptions* options, int* subscribers,
+                          double* wait_s) {
+  cmd->add_option("--domain", *domain_id, "DDS domain id")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 232));
+  AddDdsOptions(cmd, options);
+  cmd->add_option("--subscribers", *subscribers,
+                  "Wait for this many subscribers before the first block")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--wait", *wait_s, "Seconds to wait for the subscribers before the first block")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+}
+
 dds::DomainConfig ToolDomainConfig(const DdsOptions& options) {
   return dds::ResolveDomainConfig(options.config_file, dds::EnvironmentConfig::kApply);
 }

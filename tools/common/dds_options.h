@@ -25,6 +25,11 @@ struct DdsOptions {
 // Adds --dds-config and --dds-security to `cmd`.
 void AddDdsOptions(CLI::App* cmd, DdsOptions* options);
 
+// A publishing tool's (replay, bridge) --domain, --dds-config, --dds-security, --subscribers
+// (readers to wait for before the first block) and --wait (seconds to wait for them).
+void AddPublishingOptions(CLI::App* cmd, int* domain_id, DdsOptions* options, int* subscribers,
+                          double* wait_s);
+
 // The domain configuration in force for these options (throws std::runtime_error naming the
 // file if it cannot be read).
 dds::DomainConfig ToolDomainConfig(const DdsOptions& options);
