@@ -13,6 +13,7 @@
 #include "core/evaluation/scenario_matrix.h"
 #include "tests/core/counting_operator_new.h"
 #include "tests/core/evaluation/drifting_machine.h"
+#include "tests/core/evaluation/scenario_of.h"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -28,34 +29,18 @@ namespace {
 // A pulse on G1 (input shaft) of the distinct-teeth torsional plant at 900 r/min with pump
 // tones, bursts and +/- 0.3 % drift within each block: one of the tuning matrix's scenarios.
 Scenario DriftingPulseOnG1(bool unmodelled) {
-  Scenario s;
-  s.family = PlantFamily::kLumpedTorsional;
-  s.variant = TrainVariant::kDistinct;
-  s.fault = PlantFaultKind::kTePulse;
-  s.gear = "G1";
-  s.input_rpm = 900.0;
-  s.noise = 0.05;
-  s.channels = ChannelSet::kSeats;
-  s.unmodelled = unmodelled;
-  s.seed = ScenarioSeed(s.Key());
-  return s;
+  return testing::ScenarioOf(PlantFamily::kLumpedTorsional, TrainVariant::kDistinct,
+                             PlantFaultKind::kTePulse, "G1", 900.0, 0.05, ChannelSet::kSeats,
+                             unmodelled);
 }
 
 // Amplitude modulation by a tooth of G1 on the distinct-teeth perturbed plant at 900 r/min,
 // 10 % noise, housing channel, pump tones, bursts and +/- 0.3 % drift: a tuning-matrix scenario
 // whose shaft the constant-speed evidence misses.
 Scenario DriftingModulationOnG1() {
-  Scenario s;
-  s.family = PlantFamily::kLumpedPerturbed;
-  s.variant = TrainVariant::kDistinct;
-  s.fault = PlantFaultKind::kMeshAm;
-  s.gear = "G1";
-  s.input_rpm = 900.0;
-  s.noise = 0.10;
-  s.channels = ChannelSet::kSeatsAndHousing;
-  s.unmodelled = true;
-  s.seed = ScenarioSeed(s.Key());
-  return s;
+  return testing::ScenarioOf(PlantFamily::kLumpedPerturbed, TrainVariant::kDistinct,
+                             PlantFaultKind::kMeshAm, "G1", 900.0, 0.10,
+                             ChannelSet::kSeatsAndHousing, true);
 }
 
 ScenarioOutcome RunWith(const Scenario& s, bool localisation_tracking) {

@@ -8,23 +8,15 @@
 
 #include "core/evaluation/evaluation_runner.h"
 #include "core/evaluation/scenario_matrix.h"
+#include "tests/core/evaluation/scenario_of.h"
 
 namespace gearpath {
 namespace {
 
 Scenario LowSpeedScenario(PlantFamily family, TrainVariant variant, PlantFaultKind fault,
                           const std::string& gear, double noise) {
-  Scenario s;
-  s.family = family;
-  s.variant = variant;
-  s.fault = fault;
-  s.gear = gear;
-  s.input_rpm = 300.0;
-  s.noise = noise;
-  s.channels = ChannelSet::kSeatsAndHousing;
-  s.unmodelled = true;
-  s.seed = ScenarioSeed(s.Key());
-  return s;
+  return testing::ScenarioOf(family, variant, fault, gear, 300.0, noise,
+                             ChannelSet::kSeatsAndHousing, true);
 }
 
 // Tuning-matrix scenarios whose faulty shaft the average's exclusive energy did not name when
