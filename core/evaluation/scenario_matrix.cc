@@ -81,7 +81,11 @@ std::uint64_t ScenarioSeed(std::string_view key) noexcept {
 std::vector<Scenario> EnumerateScenarios(MatrixSize size, const MatrixFilter& filter) {
   std::vector<Scenario> out;
   const std::vector<Cell> cells = Cells();
-  auto push = [&out](Scenario s) {
+  auto push = [&out, &filter](Scenario s) {
+    if (!filter.key_contains.empty() &&
+        s.Key().find(filter.key_contains) == std::string::npos) {
+      return;
+    }
     s.index = out.size();
     s.seed = ScenarioSeed(s.Key());
     out.push_back(std::move(s));
@@ -127,6 +131,23 @@ std::vector<Scenario> EnumerateScenarios(MatrixSize size, const MatrixFilter& fi
           }
         }
       }
+    }
+  }
+  return out;
+}
+
+std::vector<Scenario> SampleScenarios(std::vector<Scenario> scenarios, std::size_t n) {
+  if (n >= scenarios.size()) return scenarios;
+  std::vector<Scenario> by_seed = scenarios;
+  std::nth_element(by_seed.begin(), by_seed.begin() + static_cast<std::ptrdiff_t>(n), by_seed.end(),
+                   [](const Scenario& a, const Scenario& b) { return a.seed < b.seed; });
+  const std::uint64_t cut = by_seed[n].seed;  // the (n+1)-th smallest seed
+  std::vector<Scenario> out;
+  out.reserve(n);
+  for (Scenario& s : scenarios) {
+    if (s.seed < cut && out.size() < n) {
+      s.index = out.size();
+      out.push_back(std::move(s));
     }
   }
   return out;

@@ -25,6 +25,8 @@ namespace {
 
 struct EvaluateArgs {
   std::string matrix = "quick";
+  std::string match;
+  std::size_t sample = 0;
   std::vector<std::string> families;
   bool held_out_only = false;
   bool include_held_out = false;
@@ -100,7 +102,11 @@ int RunEvaluate(const EvaluateArgs& args) {
     }
     filter.families.push_back(*f);
   }
-  const std::vector<Scenario> scenarios = EnumerateScenarios(*size, filter);
+  filter.key_contains = args.match;
+  std::vector<Scenario> scenarios = EnumerateScenarios(*size, filter);
+  if (args.sample > 0) scenarios = SampleScenarios(std::move(scenarios), args.sample);
+  const std::string matrix_label =
+      args.sample > 0 ? args.matrix + ", sample " + std::to_string(scenarios.size()) : args.matrix;
   if (scenarios.empty()) {
     std::fprintf(stderr, "gearpath evaluate: the selection holds no scenario\n");
     return kExitBadInput;
@@ -116,7 +122,7 @@ int RunEvaluate(const EvaluateArgs& args) {
                           ? args.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   std::fprintf(stderr, "gearpath evaluate: %zu scenarios (%s matrix) on %d threads\n",
-               scenarios.size(), args.matrix.c_str(), threads);
+               scenarios.size(), matrix_label.c_str(), threads);
   const auto start = std::chrono::steady_clock::now();
   const bool quiet = args.quiet;
   RunnerOptions runner;
@@ -153,7 +159,7 @@ int RunEvaluate(const EvaluateArgs& args) {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::vector<PartitionSummary> summary = Summarise(outcomes);
-  std::printf("gearpath evaluate: %s matrix, %zu scenarios, %.0f s\n", args.matrix.c_str(),
+  std::printf("gearpath evaluate: %s matrix, %zu scenarios, %.0f s\n", matrix_label.c_str(),
               scenarios.size(), elapsed);
   std::printf(
       "columns: faulty / healthy scenarios; detection and right-gear rate over faulty "
@@ -164,7 +170,7 @@ int RunEvaluate(const EvaluateArgs& args) {
   std::fputs(FormatSummary(summary).c_str(), stdout);
   if (!args.json_path.empty()) {
     std::ofstream out(args.json_path);
-    out << ToJson(args.matrix, outcomes, summary) << "\n";
+    out << ToJson(matrix_label, outcomes, summary) << "\n";
     if (!out) {
       std::fprintf(stderr, "gearpath evaluate: cannot write --json file '%s'\n",
                    args.json_path.c_str());
@@ -191,6 +197,12 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
       "Run the evaluation matrix (plants of independent physics, fault models, speeds, noise) "
       "through the block processor and print detection, right-gear and false-alarm rates");
   cmd->add_option("--matrix", args->matrix, "quick or full")->capture_default_str();
+  cmd->add_option("--match", args->match,
+                  "only scenarios whose key contains this text, e.g. '/mesh_am/G3/' or '200rpm'");
+  cmd->add_option("--sample", args->sample,
+                  "run N scenarios of the selection drawn at random, the same N every run "
+                  "(e.g. --matrix full --sample 400)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--family", args->families,
                   "only these families (lumped_perturbed, lumped_torsional, modal_housing)");
   auto* only = cmd->add_flag("--held-out-only", args->held_out_only,

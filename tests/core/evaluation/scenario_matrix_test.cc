@@ -4,11 +4,20 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
 namespace gearpath {
 namespace {
+
+// Position of `s` in `all` (by key), to check that a subset keeps the matrix order.
+std::size_t full_index(const std::vector<Scenario>& all, const Scenario& s) {
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (all[i].Key() == s.Key()) return i;
+  }
+  return all.size();
+}
 
 TEST(ScenarioMatrix, FullIsTheWholeFactorial) {
   MatrixFilter all;
@@ -66,6 +75,48 @@ TEST(ScenarioMatrix, QuickIsASubsetOfFullWithTheSameSeedsAndCoversEveryLevel) {
   for (const auto& [family, l] : levels) {
     EXPECT_EQ(l.size(), 5u + 3u + 2u + 2u + 2u) << PlantFamilyName(family);
   }
+}
+
+TEST(ScenarioMatrix, KeyFilterKeepsOnlyMatchingScenarios) {
+  MatrixFilter f;
+  f.key_contains = "/mesh_am/G3/";
+  const std::vector<Scenario> some = EnumerateScenarios(MatrixSize::kFull, f);
+  // 2 tuning families x 2 trains x 5 speeds x 3 noise x 2 channel sets x 2 unmodelled.
+  ASSERT_EQ(some.size(), 2u * 2u * 5u * 3u * 2u * 2u);
+  for (std::size_t i = 0; i < some.size(); ++i) {
+    EXPECT_EQ(some[i].index, i);
+    EXPECT_EQ(some[i].fault, PlantFaultKind::kMeshAm);
+    EXPECT_EQ(some[i].gear, "G3");
+  }
+  f.key_contains = "no such key";
+  EXPECT_TRUE(EnumerateScenarios(MatrixSize::kFull, f).empty());
+}
+
+TEST(ScenarioMatrix, SampleIsTheSmallestSeedsInMatrixOrder) {
+  const std::vector<Scenario> full = EnumerateScenarios(MatrixSize::kFull);
+  const std::vector<Scenario> sample = SampleScenarios(full, 300);
+  ASSERT_EQ(sample.size(), 300u);
+  std::vector<std::uint64_t> seeds;
+  for (const Scenario& s : full) seeds.push_back(s.seed);
+  std::sort(seeds.begin(), seeds.end());
+  std::set<std::uint64_t> smallest(seeds.begin(), seeds.begin() + 300);
+  std::size_t healthy = 0;
+  std::map<double, std::size_t> by_speed;
+  for (std::size_t i = 0; i < sample.size(); ++i) {
+    EXPECT_EQ(sample[i].index, i);
+    EXPECT_TRUE(smallest.count(sample[i].seed)) << sample[i].Key();
+    if (i > 0) {
+      EXPECT_LT(full_index(full, sample[i - 1]), full_index(full, sample[i]));
+    }
+    healthy += sample[i].fault == PlantFaultKind::kNone;
+    ++by_speed[sample[i].input_rpm];
+  }
+  // A uniform draw: a fifth healthy and a fifth per speed, within ~4 binomial sigmas.
+  EXPECT_NEAR(static_cast<double>(healthy), 60.0, 28.0);
+  ASSERT_EQ(by_speed.size(), 5u);
+  for (const auto& [rpm, n] : by_speed) EXPECT_NEAR(static_cast<double>(n), 60.0, 28.0) << rpm;
+  EXPECT_EQ(SampleScenarios(full, 300).front().Key(), sample.front().Key());  // same every run
+  EXPECT_EQ(SampleScenarios(full, full.size() + 1).size(), full.size());
 }
 
 TEST(ScenarioMatrix, SpeedBands) {
