@@ -64,4 +64,15 @@ struct TopicTraits<gearpath_Status> {
   static constexpr TopicClass kClass = TopicClass::kStatus;
 };
 
+// One instance per (daemon, machine), published every status period: the status class (its
+// deadline tells a subscriber that the daemon stopped reporting the machine).
+template <>
+struct TopicTraits<gearpath_MachineHealth> {
+  static const dds_topic_descriptor_t& Descriptor() noexcept {
+    return gearpath_MachineHealth_desc;
+  }
+  static constexpr std::string_view kName = "gearpath/MachineHealth";
+  static constexpr TopicClass kClass = TopicClass::kStatus;
+};
+
 }  // namespace gearpath::dds

@@ -138,6 +138,15 @@ class Writer : public Entity {
     return Status::Ok();
   }
 
+  // Disposes the instance whose key fields `key_sample` carries (the other fields are
+  // ignored): readers see it NOT_ALIVE_DISPOSED, and a transient-local writer no longer
+  // hands its last sample to late joiners.
+  Status Dispose(const T& key_sample) noexcept {
+    const dds_return_t rc = dds_dispose(handle(), &key_sample);
+    if (rc < 0) return Error{DdsErrorMessage("dds_dispose(\"" + topic_name_ + "\")", rc)};
+    return Status::Ok();
+  }
+
   // Number of readers currently matched (discovery is asynchronous).
   Result<std::uint32_t> MatchedReaders() const noexcept {
     dds_publication_matched_status_t status{};
