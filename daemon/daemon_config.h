@@ -24,6 +24,7 @@ struct TopicNames {
   std::string envelope_indicators;
   std::string condition_indicators;
   std::string status;
+  std::string machine_health;
   bool operator==(const TopicNames&) const = default;
 };
 

@@ -50,18 +50,26 @@ void FillDominantPath(std::string_view machine_id, const BlockResult& r,
   }
 }
 
+namespace {
+
+gearpath_FaultState WireFaultState(FaultState state) noexcept {
+  switch (state) {
+    case FaultState::kLearning: return gearpath_LEARNING;
+    case FaultState::kSuspected: return gearpath_SUSPECTED;
+    case FaultState::kAlarm: return gearpath_ALARM;
+    default: return gearpath_NO_FAULT;
+  }
+}
+
+}  // namespace
+
 void FillSuspectedGear(std::string_view machine_id, const BlockResult& r,
                        gearpath_SuspectedGear& out) noexcept {
   const GearVerdict& v = r.verdict;
   CopyTruncated(out.machine_id, machine_id);
   out.block_sequence = r.sequence;
   out.block_t0_ns = r.t0_ns;
-  switch (v.state) {
-    case FaultState::kLearning: out.state = gearpath_LEARNING; break;
-    case FaultState::kSuspected: out.state = gearpath_SUSPECTED; break;
-    case FaultState::kAlarm: out.state = gearpath_ALARM; break;
-    default: out.state = gearpath_NO_FAULT; break;
-  }
+  out.state = WireFaultState(v.state);
   const bool named = out.state == gearpath_SUSPECTED || out.state == gearpath_ALARM;
   CopyTruncated(out.gear_name, named ? v.gear_name : std::string_view());
   CopyTruncated(out.shaft_name, named ? v.shaft_name : std::string_view());
@@ -205,6 +213,31 @@ void FillStatus(const StatusFigures& figures, std::span<const std::string> machi
     m.latency_last_ms = c.latency_last_ms;
     m.latency_max_ms = c.latency_max_ms;
   }
+}
+
+void FillMachineHealth(const MachineHealthFigures& figures, std::string_view machine_id,
+                       std::uint32_t index, const MachineCounters& c,
+                       gearpath_MachineHealth& out) noexcept {
+  CopyTruncated(out.daemon_id, figures.daemon_id);
+  CopyTruncated(out.machine_id, machine_id);
+  out.daemon_state = figures.state;
+  out.timestamp_ns = figures.timestamp_ns;
+  out.machine_index = index;
+  out.machine_count = figures.machine_count;
+  out.fault_state = WireFaultState(c.fault_state);
+  out.publishing_results = figures.publishing_results;
+  out.last_block_sequence = c.last_sequence;
+  out.last_block_t0_ns = c.last_t0_ns;
+  out.blocks_received = c.received;
+  out.blocks_processed = c.processed;
+  out.blocks_rejected = c.rejected;
+  out.blocks_lost = c.lost;
+  CopyTruncated(out.last_rejection_reason, c.last_rejection);
+  out.last_alpha = c.last_alpha;
+  out.last_condition_number = c.last_condition;
+  out.last_relative_residual = c.last_residual;
+  out.latency_last_ms = c.latency_last_ms;
+  out.latency_max_ms = c.latency_max_ms;
 }
 
 }  // namespace gearpath::daemon

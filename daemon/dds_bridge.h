@@ -70,11 +70,28 @@ struct StatusFigures {
   double uptime_s = 0.0;
 };
 
-// One MachineStatus per configured machine, in `machine_ids` order. last_rejection_reason is
+// One MachineStatus per configured machine, in `machine_ids` order, for the first
+// MAX_MACHINES (64) machines only: the wire type's bound, which a published type cannot change
+// (docs/topics.md); MachineHealth reports every machine. last_rejection_reason is
 // "<reason>: <message>", the reason being the stable snake_case name (e.g. "non_finite").
 void FillStatus(const StatusFigures& figures, std::span<const std::string> machine_ids,
                 const std::map<std::string, MachineCounters, std::less<>>& counters,
                 gearpath_Status& out) noexcept;
+
+// What MachineHealth says of the daemon beside the machine's own counters.
+struct MachineHealthFigures {
+  std::string_view daemon_id;
+  gearpath_DaemonState state = gearpath_RUNNING;
+  std::int64_t timestamp_ns = 0;
+  std::uint32_t machine_count = 0;  // machines the daemon serves
+  bool publishing_results = true;   // false: a hot standby withholding results
+};
+
+// One machine's MachineHealth sample (machine `index` of the configuration, 0-based).
+// last_rejection_reason is as on Status.
+void FillMachineHealth(const MachineHealthFigures& figures, std::string_view machine_id,
+                       std::uint32_t index, const MachineCounters& counters,
+                       gearpath_MachineHealth& out) noexcept;
 
 // Copies `text` into a bounded IDL string, truncating if it does not fit; true if it fitted.
 template <std::size_t N>

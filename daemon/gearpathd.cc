@@ -8,6 +8,7 @@
 #include <chrono>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <thread>
 
@@ -104,6 +105,21 @@ std::size_t WorkerCount(const DaemonConfig& c) {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
+// The block reader's instance limit: every configured machine, with room for a reload to
+// double them (a reload beyond it is refused: resource limits are fixed when the reader is
+// created), and never below the profile's kMaxMachinesPerDomain. Only admitted machines'
+// instances ever exist in the reader (MachineIdFilter), so the limit is a bound, not memory.
+std::size_t BlockInstanceLimit(const DaemonConfig& c) {
+  return std::max(static_cast<std::size_t>(dds::kMaxMachinesPerDomain), 2 * c.machines.size());
+}
+
+dds::Qos BlockReaderQos(std::size_t instances) {
+  dds::Qos qos = dds::ReaderQos(dds::TopicClass::kBlockStream);
+  const auto n = static_cast<std::int32_t>(instances);
+  qos.ResourceLimits(dds::kBlockHistoryDepth * n, n, dds::kBlockHistoryDepth);
+  return qos;
+}
+
 // The block topic with the machine filter set, ready for the block reader.
 const dds::Topic<gearpath_AccelBlock>& FilteredByMachine(dds::Topic<gearpath_AccelBlock>& topic,
                                                          MachineIdFilter& filter) {
@@ -125,13 +141,17 @@ struct Gearpathd::Impl {
         indicators_topic(participant, first.config.topics.envelope_indicators),
         condition_topic(participant, first.config.topics.condition_indicators),
         status_topic(participant, first.config.topics.status),
-        block_reader(FilteredByMachine(block_topic, machine_filter)),
+        health_topic(participant, first.config.topics.machine_health),
+        block_instances(BlockInstanceLimit(first.config)),
+        block_reader(FilteredByMachine(block_topic, machine_filter),
+                     BlockReaderQos(block_instances)),
         status_reader(status_topic),
         dominant_writer(dominant_topic),
         gear_writer(gear_topic),
         indicators_writer(indicators_topic),
         condition_writer(condition_topic),
         status_writer(status_topic),
+        health_writer(health_topic),
         blocks_ready(block_reader),
         guard(participant),
         waitset(participant),
@@ -170,6 +190,8 @@ struct Gearpathd::Impl {
   void SnapshotCounters(bool new_period);
   void Housekeeping(bool force_status);
   void PublishStatus(gearpath_DaemonState state);
+  void PublishHealth(gearpath_DaemonState state, std::int64_t timestamp_ns);
+  void DisposeHealth(const std::string& of_daemon, std::span<const std::string> machine_ids);
   void LogThroughput();
   void Resume(MachineLane& lane, MachineSet& previous);
   void MarkChanged(MachineLane& lane, FaultState verdict_state);
@@ -193,6 +215,8 @@ struct Gearpathd::Impl {
   dds::Topic<gearpath_EnvelopeIndicators> indicators_topic;
   dds::Topic<gearpath_ConditionIndicators> condition_topic;
   dds::Topic<gearpath_Status> status_topic;
+  dds::Topic<gearpath_MachineHealth> health_topic;
+  const std::size_t block_instances;  // the block reader's instance limit (BlockInstanceLimit)
   dds::Reader<gearpath_AccelBlock> block_reader;
   dds::Reader<gearpath_Status> status_reader;  // a standby watches its primary's Status
   dds::Writer<gearpath_DominantPath> dominant_writer;
@@ -200,6 +224,7 @@ struct Gearpathd::Impl {
   dds::Writer<gearpath_EnvelopeIndicators> indicators_writer;
   dds::Writer<gearpath_ConditionIndicators> condition_writer;
   dds::Writer<gearpath_Status> status_writer;
+  dds::Writer<gearpath_MachineHealth> health_writer;
   dds::ReadCondition blocks_ready;
   dds::GuardCondition guard;
   dds::WaitSet waitset;
@@ -244,6 +269,7 @@ struct Gearpathd::Impl {
   std::vector<dds::SampleInfo> infos;
   QueuedBlock offered;  // the block being handed to its lane
   dds::Owned<gearpath_Status> status_sample;
+  dds::Owned<gearpath_MachineHealth> health_sample;
 
   // The worker pool, last: its threads stop before anything they use goes.
   const std::size_t queue_capacity;  // daemon.queue_blocks at start-up
@@ -264,6 +290,7 @@ void Gearpathd::Impl::Resume(MachineLane& lane, MachineSet& previous) {
                    "learning a new baseline",
                    m.id, st.error());
       lane.mark = SaveMark{FaultState::kLearning, true, Clock::now(), false};
+      lane.counters.fault_state = FaultState::kLearning;
     }
     return;  // counters and save marks carry over as they are
   }
@@ -289,6 +316,7 @@ void Gearpathd::Impl::Resume(MachineLane& lane, MachineSet& previous) {
     return;
   }
   lane.mark.last_state = s.learned.alarm.state;
+  lane.counters.fault_state = s.learned.alarm.state;
   spdlog::info("{}: resumed from {} (saved {:.0f} s ago): baseline {} of {} blocks, verdict "
                "state {}",
                m.id, store->PathOf(m.id), age_s, m.processor.baseline_blocks_learned(),
@@ -306,9 +334,23 @@ void Gearpathd::Impl::Adopt(Generation generation) {
   pool->Pause();
   MachineSet previous = std::move(machines);
   machines = std::move(generation.machines);
-  machine_ids.clear();
+  const std::vector<std::string> previous_ids = std::exchange(machine_ids, {});
   for (const auto& m : c.machines) machine_ids.push_back(m.id);
   machine_filter.Admit(machine_ids);
+  // MachineHealth instances of machines this daemon no longer serves (all of them if its id
+  // changed) are disposed, so that subscribers and late joiners stop seeing them.
+  if (!previous_ids.empty()) {
+    std::vector<std::string> gone;
+    for (const std::string& id : previous_ids) {
+      if (c.daemon_id != daemon_id || !machines.machines.contains(id)) gone.push_back(id);
+    }
+    DisposeHealth(daemon_id, gone);
+  }
+  if (machine_ids.size() > gearpath_MAX_MACHINES) {
+    spdlog::info("{} machines: Status lists the first {} (its wire bound, configuration order); "
+                 "topic \"{}\" reports every machine",
+                 machine_ids.size(), gearpath_MAX_MACHINES, c.topics.machine_health);
+  }
   // Lanes of machines no longer configured go, with their counters and queued blocks.
   for (auto it = lanes.begin(); it != lanes.end();) {
     if (machines.machines.contains(it->first)) {
@@ -383,6 +425,44 @@ void Gearpathd::Impl::PublishStatus(gearpath_DaemonState s) {
   if (Status st = status_writer.Write(*status_sample); !st) {
     ++publish_failures;
     spdlog::error("Status not published: {}", st.error());
+  }
+  PublishHealth(s, figures.timestamp_ns);
+}
+
+// Reader thread, right after a counter snapshot: one MachineHealth sample per machine.
+void Gearpathd::Impl::PublishHealth(gearpath_DaemonState s, std::int64_t timestamp_ns) {
+  MachineHealthFigures figures;
+  figures.daemon_id = daemon_id;
+  figures.state = s;
+  figures.timestamp_ns = timestamp_ns;
+  figures.machine_count = static_cast<std::uint32_t>(machine_ids.size());
+  figures.publishing_results = publishing.load();
+  static const MachineCounters kNone;
+  std::size_t failed = 0;
+  std::string first_error;
+  for (std::size_t i = 0; i < machine_ids.size(); ++i) {
+    const auto it = counters.find(machine_ids[i]);
+    FillMachineHealth(figures, machine_ids[i], static_cast<std::uint32_t>(i),
+                      it == counters.end() ? kNone : it->second, *health_sample);
+    if (Status st = health_writer.Write(*health_sample); !st) {
+      if (failed++ == 0) first_error = st.error();
+    }
+  }
+  if (failed > 0) {  // one line per period, not one per machine
+    publish_failures += failed;
+    spdlog::error("MachineHealth not published for {} of {} machine(s): {}", failed,
+                  machine_ids.size(), first_error);
+  }
+}
+
+void Gearpathd::Impl::DisposeHealth(const std::string& of_daemon,
+                                    std::span<const std::string> ids) {
+  for (const std::string& id : ids) {
+    CopyTruncated(health_sample->daemon_id, of_daemon);
+    CopyTruncated(health_sample->machine_id, id);
+    if (Status st = health_writer.Dispose(*health_sample); !st) {
+      spdlog::warn("{}: MachineHealth instance not disposed: {}", id, st.error());
+    }
   }
 }
 
@@ -639,6 +719,9 @@ void Gearpathd::Impl::HandleBlock(WorkerScratch& ws, MachineLane& lane, QueuedBl
     c.last_alpha = r.regularisation.alpha_median;
     c.last_condition = r.regularisation.condition_max;
     c.last_residual = r.regularisation.relative_residual;
+    c.fault_state = r.verdict.state;
+    c.last_sequence = r.sequence;
+    c.last_t0_ns = r.t0_ns;
   }
   MarkChanged(lane, r.verdict.state);
   if (lost > 0) {
@@ -774,6 +857,12 @@ void Gearpathd::Impl::Reload() {
     failure = "dds: the domain and topic names cannot change on reload (restart the daemon)";
   } else if (ResolveStateDirectory(*config) != ResolveStateDirectory(lifecycle_config)) {
     failure = "state.directory cannot change on reload (restart the daemon)";
+  } else if (config->machines.size() > block_instances) {
+    failure = fmt::format("machines: {} machines exceed the {} the block reader was sized for "
+                          "at start-up (twice the machines then configured, at least {}); "
+                          "restart the daemon",
+                          config->machines.size(), block_instances,
+                          dds::kMaxMachinesPerDomain);
   } else {
     auto machines_built = BuildMachines(*config, frf_registry);
     if (!machines_built) {

@@ -94,7 +94,10 @@ ParamSpec Boolean(std::string name, std::string meaning, bool fallback) {
 }
 
 constexpr std::size_t kMaxIdLength = 64;  // machine ids are DDS keys: keep them short
-constexpr std::size_t kMaxMachines = 64;
+// A sanity bound, not a design limit: a daemon serves as many machines as its cores keep up
+// with (Status.machines carries the first 64, MachineHealth every one). 4096 catches a
+// generated configuration gone wrong before it builds thousands of processors.
+constexpr std::size_t kMaxMachines = 4096;
 constexpr std::size_t kMaxChannels = 32;  // IDL MAX_CHANNELS
 
 ParamSpec DaemonSection() {
@@ -189,8 +192,13 @@ ParamSpec DdsSection() {
                       "Output: every condition indicator, its z-score and the block score per "
                       "block.",
                       "gearpath/ConditionIndicators", 1, 256),
-               String("status", "Output: daemon status, periodically.", "gearpath/Status", 1,
-                      256)})});
+               String("status",
+                      "Output: daemon status, periodically (with the first 64 machines).",
+                      "gearpath/Status", 1, 256),
+               String("machine_health",
+                      "Output: every machine's counters and state, one instance per daemon "
+                      "and machine, each status period.",
+                      "gearpath/MachineHealth", 1, 256)})});
 }
 
 ParamSpec ChannelSpec() {
@@ -426,7 +434,10 @@ const ParamSpec& DaemonConfigSchema() {
   static const ParamSpec schema = Object(
       "", "gearpathd configuration",
       {DaemonSection(), StateSection(), StandbySection(), DdsSection(),
-       Array("machines", "The gearboxes this daemon watches; blocks of other machines are ignored.",
+       Array("machines",
+             "The gearboxes this daemon watches; blocks of other machines are ignored. No "
+             "fixed cap (4096 is a sanity bound): Status lists the first 64, MachineHealth "
+             "every one.",
              MachineSpec(), 1, kMaxMachines)});
   return schema;
 }

@@ -5,7 +5,9 @@
 // holding 255 ids exhausted: every legitimate publisher then stalled. The filter runs in
 // Cyclone's receive path (dds::Topic::SetSampleFilter), before a sample takes a place in the
 // reader: foreign blocks are counted and dropped, and acknowledged so their writer goes on.
-// Only the daemon's own machines' instances (at most 64) ever exist in the reader.
+// Only the daemon's own machines' instances ever exist in the reader, whose instance limit is
+// sized from the configured machine count (gearpathd.cc, BlockInstanceLimit): there is no
+// fixed machine cap, and foreign ids cannot exhaust the limit however many there are.
 #pragma once
 
 #include <array>
@@ -32,7 +34,8 @@ class MachineIdFilter {
   std::uint64_t dropped() const noexcept { return dropped_.load(std::memory_order_relaxed); }
 
   // Foreign ids first seen since the last call (the first kRememberedIds only), for the log:
-  // a misspelt machine id shows up as a foreign one.
+  // a misspelt machine id shows up as a foreign one. A bound on log lines and fixed storage,
+  // not on machines: every foreign block is still dropped and counted (dropped()).
   std::vector<std::string> TakeNewForeignIds();
 
   static constexpr std::size_t kRememberedIds = 64;

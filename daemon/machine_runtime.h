@@ -59,6 +59,11 @@ struct MachineCounters {
   double last_residual = 0.0;
   double latency_last_ms = 0.0;
   double latency_max_ms = 0.0;
+  // The last accepted block and its verdict state, for MachineHealth (not saved: the state
+  // is restored from the saved alarm model, the block comes again).
+  FaultState fault_state = FaultState::kLearning;
+  std::uint64_t last_sequence = 0;
+  std::int64_t last_t0_ns = 0;
   // Condition indicators left off the wire by the IDL bounds (docs/topics.md): sets, values
   // and truncated names, summed over blocks; warned about once per machine.
   std::uint64_t indicators_omitted = 0;

@@ -11,9 +11,10 @@
 #                                  (`gearpath record`)
 #   <who>_permissions.xml / .p7s   what each may do, signed by the CA:
 #                                    gearpathd   subscribes blocks and Status, publishes
-#                                                results and Status
+#                                                results, Status and MachineHealth
 #                                    acquisition publishes blocks only
-#                                    monitor     subscribes results and Status only
+#                                    monitor     subscribes results, Status and
+#                                                MachineHealth only
 #                                    recorder    subscribes blocks only
 #   <who>.security.json            the six files of one participant, absolute paths: the
 #                                  daemon's `dds.security` object, or `--dds-security FILE`
@@ -60,7 +61,7 @@ cd "$out"
 # Topic names as in config/gearpathd.json (dds.topics); change them here if the plant does.
 t_block="gearpath/AccelBlock"
 t_results=("gearpath/DominantPath" "gearpath/SuspectedGear" "gearpath/EnvelopeIndicators"
-           "gearpath/ConditionIndicators" "gearpath/Status")
+           "gearpath/ConditionIndicators" "gearpath/Status" "gearpath/MachineHealth")
 
 # EC P-256 keys: supported by Cyclone's authentication plugin and fast to make.
 newkey=(-newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes)

@@ -217,6 +217,43 @@ TEST(DaemonConfig, TheConditionIndicatorsTopicNameIsConfigurableLikeTheOthers) {
   EXPECT_EQ(ErrorsOf(c), "dds.topics.condition_indicators: expected at least 1 characters, got 0");
 }
 
+TEST(DaemonConfig, TheMachineHealthTopicNameIsConfigurableLikeTheOthers) {
+  auto parsed = ParseDaemonConfig(DefaultConfigText(), kEmbeddedOrigin);
+  ASSERT_TRUE(parsed.ok()) << parsed.error();
+  EXPECT_EQ(parsed->topics.machine_health, "gearpath/MachineHealth");
+  json c = DefaultJson();
+  c["dds"]["topics"]["machine_health"] = "plant7/MachineHealth";
+  auto renamed = ParseDaemonConfig(c.dump(), "test.json");
+  ASSERT_TRUE(renamed.ok()) << renamed.error();
+  EXPECT_EQ(renamed->topics.machine_health, "plant7/MachineHealth");
+  c["dds"]["topics"]["machine_health"] = "";
+  EXPECT_EQ(ErrorsOf(c), "dds.topics.machine_health: expected at least 1 characters, got 0");
+}
+
+// Issue 9, no arbitrary machine cap: 100 machines (more than Status' 64) are a configuration
+// like any other; only an absurd count is refused, naming the key and the sanity bound.
+TEST(DaemonConfig, AHundredMachinesAreAcceptedAndAnAbsurdCountIsRefused) {
+  json c = DefaultJson();
+  const json one = c["machines"][0];
+  const auto with_machines = [&](int n) {
+    c["machines"] = json::array();
+    for (int i = 0; i < n; ++i) {
+      json m = one;
+      m["id"] = "gb" + std::to_string(i);
+      c["machines"].push_back(std::move(m));
+    }
+  };
+  with_machines(100);
+  auto parsed = ParseDaemonConfig(c.dump(), "test.json");
+  ASSERT_TRUE(parsed.ok()) << parsed.error();
+  ASSERT_EQ(parsed->machines.size(), 100u);
+  EXPECT_EQ(parsed->machines[99].id, "gb99");
+  EXPECT_EQ(parsed->machines[99].key_path, "machines[99]");
+
+  with_machines(4097);
+  EXPECT_EQ(ErrorsOf(c), "machines: expected at most 4096 items, got 4097");
+}
+
 TEST(DaemonConfig, RejectsMalformedJsonNamingTheFile) {
   auto parsed = ParseDaemonConfig("{\"daemon\": {", "broken.json");
   ASSERT_FALSE(parsed.ok());

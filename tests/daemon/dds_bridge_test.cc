@@ -149,7 +149,7 @@ TEST(DdsBridge, FaultStateKeepsTheVersion1NumbersAndLearningComesLast) {
   EXPECT_EQ(static_cast<int>(gearpath_SUSPECTED), 1);
   EXPECT_EQ(static_cast<int>(gearpath_ALARM), 2);
   EXPECT_EQ(static_cast<int>(gearpath_LEARNING), 3);
-  EXPECT_EQ(gearpath_CONTRACT_VERSION, 2u);
+  EXPECT_EQ(gearpath_CONTRACT_VERSION, 3u);  // version 3 added MachineHealth, no enumerator
 }
 
 TEST(DdsBridge, EnvelopeIndicatorsCarryTheReconstructedBandAndEveryHarmonic) {
@@ -307,6 +307,72 @@ TEST(DdsBridge, StatusListsEveryConfiguredMachineWithItsCountersAndLastRejection
             "non_finite: sample 17 of channel 0 is NaN");
   EXPECT_EQ(GetString(out->machines._buffer[1].machine_id), "gb2");
   EXPECT_EQ(out->machines._buffer[1].blocks_received, 0u);
+}
+
+TEST(DdsBridge, StatusCarriesTheFirstSixtyFourOfAHundredMachinesInConfigurationOrder) {
+  std::map<std::string, MachineCounters, std::less<>> counters;
+  std::vector<std::string> ids;
+  for (int i = 0; i < 100; ++i) {
+    ids.push_back("gb" + std::to_string(i));
+    counters[ids.back()].received = static_cast<std::uint64_t>(i);
+  }
+  Owned<gearpath_Status> out;
+  FillStatus({"d1", gearpath_RUNNING, 5, 1.5}, ids, counters, *out);
+  ASSERT_EQ(out->machines._length, std::uint32_t{gearpath_MAX_MACHINES});
+  for (std::uint32_t i = 0; i < out->machines._length; ++i) {
+    EXPECT_EQ(GetString(out->machines._buffer[i].machine_id), ids[i]);
+    EXPECT_EQ(out->machines._buffer[i].blocks_received, i);
+  }
+}
+
+TEST(DdsBridge, MachineHealthCarriesTheDaemonTheMachineItsPlaceAndEveryCounter) {
+  MachineCounters c;
+  c.received = 9;
+  c.processed = 6;
+  c.rejected = 3;
+  c.lost = 2;
+  c.last_rejection = "queue_full: 1 block(s) arrived while 32 were queued";
+  c.last_alpha = 0.01;
+  c.last_condition = 55.0;
+  c.last_residual = 0.25;
+  c.latency_last_ms = 4.5;
+  c.latency_max_ms = 9.5;
+  c.fault_state = FaultState::kAlarm;
+  c.last_sequence = 41;
+  c.last_t0_ns = 41'000'000'000;
+  MachineHealthFigures figures;
+  figures.daemon_id = "standby";
+  figures.state = gearpath_DEGRADED;
+  figures.timestamp_ns = 77;
+  figures.machine_count = 100;
+  figures.publishing_results = false;
+  Owned<gearpath_MachineHealth> out;
+  FillMachineHealth(figures, "gb99", 99, c, *out);
+  EXPECT_EQ(GetString(out->daemon_id), "standby");
+  EXPECT_EQ(GetString(out->machine_id), "gb99");
+  EXPECT_EQ(out->daemon_state, gearpath_DEGRADED);
+  EXPECT_EQ(out->timestamp_ns, 77);
+  EXPECT_EQ(out->machine_index, 99u);
+  EXPECT_EQ(out->machine_count, 100u);
+  EXPECT_EQ(out->fault_state, gearpath_ALARM);
+  EXPECT_FALSE(out->publishing_results);
+  EXPECT_EQ(out->last_block_sequence, 41u);
+  EXPECT_EQ(out->last_block_t0_ns, 41'000'000'000);
+  EXPECT_EQ(out->blocks_received, 9u);
+  EXPECT_EQ(out->blocks_processed, 6u);
+  EXPECT_EQ(out->blocks_rejected, 3u);
+  EXPECT_EQ(out->blocks_lost, 2u);
+  EXPECT_EQ(GetString(out->last_rejection_reason),
+            "queue_full: 1 block(s) arrived while 32 were queued");
+  EXPECT_EQ(out->last_alpha, 0.01);
+  EXPECT_EQ(out->last_condition_number, 55.0);
+  EXPECT_EQ(out->last_relative_residual, 0.25);
+  EXPECT_EQ(out->latency_last_ms, 4.5);
+  EXPECT_EQ(out->latency_max_ms, 9.5);
+  // A machine that has seen no block is still learning.
+  FillMachineHealth(figures, "gb0", 0, MachineCounters{}, *out);
+  EXPECT_EQ(out->fault_state, gearpath_LEARNING);
+  EXPECT_EQ(out->blocks_received, 0u);
 }
 
 TEST(DdsBridge, AnOverlongTextIsTruncatedToTheIdlBound) {
