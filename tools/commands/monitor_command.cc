@@ -7,7 +7,10 @@
 // itself after --count verdicts (SuspectedGear samples, one per processed block) or after
 // --timeout seconds. Result topics are transient-local, so a monitor started late still gets
 // each machine's latest results at once. A daemon whose Status stops arriving (killed, hung)
-// is shown NOT RESPONDING (a DaemonSilent line); docs/tools.md lists every JSON key.
+// is shown NOT RESPONDING (a DaemonSilent line); docs/tools.md lists every JSON key. Each
+// machine's counters come from MachineHealth (one sample per daemon and machine per status
+// period, every machine however many a daemon serves); from a daemon that publishes no
+// MachineHealth (contract version 2) they come from Status, which lists at most 64 machines.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -200,6 +203,31 @@ json ToJson(const gearpath_Status& s) {
           {"machines", machines}};
 }
 
+// The counters keep the names of a Status machine entry.
+json ToJson(const gearpath_MachineHealth& s) {
+  return {{"topic", "MachineHealth"},
+          {"daemon", GetString(s.daemon_id)},
+          {"machine", GetString(s.machine_id)},
+          {"daemon_state", DaemonStateName(s.daemon_state)},
+          {"timestamp_ns", s.timestamp_ns},
+          {"index", s.machine_index},
+          {"machine_count", s.machine_count},
+          {"state", StateName(s.fault_state)},
+          {"publishing_results", s.publishing_results},
+          {"block", s.last_block_sequence},
+          {"t0_ns", s.last_block_t0_ns},
+          {"received", s.blocks_received},
+          {"processed", s.blocks_processed},
+          {"rejected", s.blocks_rejected},
+          {"lost", s.blocks_lost},
+          {"last_rejection", GetString(s.last_rejection_reason)},
+          {"alpha", s.last_alpha},
+          {"condition_number", s.last_condition_number},
+          {"relative_residual", s.last_relative_residual},
+          {"latency_ms", s.latency_last_ms},
+          {"latency_max_ms", s.latency_max_ms}};
+}
+
 // The latest of each result topic per machine, for the terminal table.
 using Clock = std::chrono::steady_clock;
 
@@ -210,14 +238,26 @@ struct MachineView {
 
 // What the monitor knows of one daemon: its latest Status and when Statuses arrive. A daemon
 // that dies publishes nothing more, so its silence is the only sign: it is declared silent
-// after 3 of its status periods (measured between arrivals), at least 2 s.
+// after 3 of its status periods (measured between arrivals), at least 2 s. A daemon first
+// heard of through MachineHealth (its first Status may arrive later, or never if it dies at
+// once) is timed from that sample.
 struct DaemonView {
   json status;
+  std::map<std::string, json> health;  // latest MachineHealth per machine id (terminal)
+  std::string health_state;            // daemon_state of its latest MachineHealth
   Clock::time_point last_seen{};
   double period_s = 1.0;
   bool silent = false;  // reported silent, not heard since
 
   double SilentAfter() const { return std::max(2.0, 3.0 * period_s); }
+  // The state it last said: on its Status, else on its MachineHealth.
+  std::string LastState() const {
+    return status.is_object() ? status["state"].get<std::string>() : health_state;
+  }
+  void HeardOfThroughHealth(std::string daemon_state, Clock::time_point now) {
+    if (last_seen == Clock::time_point{}) last_seen = now;
+    health_state = std::move(daemon_state);
+  }
   void Heard(json j, Clock::time_point now) {
     if (last_seen != Clock::time_point{}) {
       const double gap = std::chrono::duration<double>(now - last_seen).count();
@@ -330,15 +370,32 @@ void DrawTable(const std::map<std::string, MachineView>& machines,
     out += "daemon " + daemon + ": ";
     if (d.silent) {
       out += "\x1b[1;31mNOT RESPONDING\x1b[0m (no Status for " + Fixed(age, 0) +
-             " s; last said " + status["state"].get<std::string>() + ")\n";
+             " s; last said " + d.LastState() + ")\n";
+    } else if (!status.is_object()) {
+      out += d.LastState() + ", no Status yet\n";
     } else {
       out += status["state"].get<std::string>() + ", up " +
              Fixed(status["uptime_s"].get<double>(), 0) + " s, Status " + Fixed(age, 1) +
              " s ago\n";
     }
-    for (const auto& m : status["machines"]) {
-      out += "  " + m["machine"].get<std::string>() + ": received " + m["received"].dump() +
-             ", processed " + m["processed"].dump() + ", rejected " + m["rejected"].dump();
+    // Every machine from MachineHealth; Status (its first 64) from an older daemon.
+    std::vector<const json*> rows;
+    for (const auto& [machine, m] : d.health) rows.push_back(&m);
+    std::stable_sort(rows.begin(), rows.end(), [](const json* a, const json* b) {
+      return (*a)["index"].get<std::uint64_t>() < (*b)["index"].get<std::uint64_t>();
+    });
+    if (rows.empty() && status.is_object()) {
+      for (const auto& m : status["machines"]) rows.push_back(&m);
+    }
+    for (const json* row : rows) {
+      const json& m = *row;
+      out += "  " + m["machine"].get<std::string>() + ": ";
+      if (m.contains("state")) out += Highlighted(m["state"].get<std::string>()) + ", ";
+      out += "received " + m["received"].dump() + ", processed " + m["processed"].dump() +
+             ", rejected " + m["rejected"].dump();
+      if (m.contains("lost") && m["lost"].get<std::uint64_t>() > 0) {
+        out += ", lost " + m["lost"].dump();
+      }
       if (!m["last_rejection"].get<std::string>().empty()) {
         out += " (last: " + m["last_rejection"].get<std::string>() + ")";
       }
@@ -382,13 +439,27 @@ std::string PlainLine(const json& j, const json& condition) {
     }
     return s;
   }
+  if (topic == "MachineHealth") {
+    std::string s = "health    " + j["machine"].get<std::string>() + " (daemon " +
+                    j["daemon"].get<std::string>() + ", " +
+                    j["daemon_state"].get<std::string>() + "): " +
+                    j["state"].get<std::string>() + ", received " + j["received"].dump() +
+                    ", processed " + j["processed"].dump() + ", rejected " +
+                    j["rejected"].dump() + ", lost " + j["lost"].dump() + ", latency " +
+                    Fixed(j["latency_ms"].get<double>(), 1) + " ms";
+    if (!j["last_rejection"].get<std::string>().empty()) {
+      s += " (last rejection: " + j["last_rejection"].get<std::string>() + ")";
+    }
+    return s;
+  }
   return "status    " + j.dump();
 }
 
 template <typename T>
 struct Subscription {
-  Subscription(const dds::Participant& participant, dds::WaitSet& waitset, dds_attach_t token)
-      : topic(participant), reader(topic), condition(reader), samples(16), infos(16) {
+  Subscription(const dds::Participant& participant, dds::WaitSet& waitset, dds_attach_t token,
+               std::size_t batch = 16)
+      : topic(participant), reader(topic), condition(reader), samples(batch), infos(batch) {
     waitset.Attach(condition, token);
   }
   dds::Topic<T> topic;
@@ -410,6 +481,8 @@ int RunMonitor(const MonitorOptions& opt) {
   Subscription<gearpath_EnvelopeIndicators> indicators(participant, waitset, 3);
   Subscription<gearpath_Status> status(participant, waitset, 4);
   Subscription<gearpath_ConditionIndicators> condition(participant, waitset, 5);
+  // One sample per machine per status period: taken in larger batches.
+  Subscription<gearpath_MachineHealth> health(participant, waitset, 6, 128);
 
   std::map<std::string, MachineView> table;
   std::map<std::string, DaemonView> daemons;
@@ -486,23 +559,59 @@ int RunMonitor(const MonitorOptions& opt) {
       daemons[std::string(GetString(s.daemon_id))].Heard(j, Clock::now());
       emit(std::move(j), "", nullptr);
     });
+    // MachineHealth: kept per daemon for the table (drawn once per round, not per sample:
+    // a daemon sends one per machine per period), printed as lines otherwise.
+    // A disposed instance (the daemon no longer serves that machine) leaves the table.
+    bool health_changed = false;
+    if (ok) {
+      auto taken = health.reader.Take(health.samples, health.infos);
+      if (!taken) {
+        std::fprintf(stderr, "gearpath monitor: %s\n", taken.error().c_str());
+        return kExitFailure;
+      }
+      for (std::size_t i = 0; i < *taken && opt.status; ++i) {
+        const gearpath_MachineHealth& s = *health.samples[i];
+        const std::string machine(GetString(s.machine_id));
+        const std::string daemon(GetString(s.daemon_id));
+        if (!health.infos[i].valid_data) {
+          if (health.infos[i].instance_state == DDS_NOT_ALIVE_DISPOSED_INSTANCE_STATE &&
+              terminal && daemons.count(daemon) > 0) {
+            health_changed = daemons[daemon].health.erase(machine) > 0 || health_changed;
+          }
+          continue;
+        }
+        // Whichever machine it is about, the sample says the daemon is alive (as Status does).
+        daemons[daemon].HeardOfThroughHealth(DaemonStateName(s.daemon_state), Clock::now());
+        if (!wanted.empty() && !wanted.count(machine)) continue;
+        json j = ToJson(s);
+        if (terminal) {
+          daemons[daemon].health[machine] = std::move(j);
+          health_changed = true;
+        } else {
+          std::puts(opt.json_lines ? j.dump().c_str() : PlainLine(j, json()).c_str());
+          std::fflush(stdout);
+        }
+      }
+    }
     if (!ok) return kExitFailure;
+    if (health_changed) DrawTable(table, daemons);
     // A daemon that stopped talking without saying STOPPING: killed, hung or cut off.
     for (auto& [id, d] : daemons) {
+      if (d.last_seen == Clock::time_point{}) continue;
       const double age = SecondsSince(d.last_seen, Clock::now());
-      if (d.silent || d.status["state"] == "stopping" || age < d.SilentAfter()) continue;
+      const std::string last_state = d.LastState();
+      if (d.silent || last_state == "stopping" || age < d.SilentAfter()) continue;
       d.silent = true;
       json j = {{"topic", "DaemonSilent"},
                 {"daemon", id},
                 {"silent_s", age},
-                {"last_state", d.status["state"]}};
+                {"last_state", last_state}};
       if (terminal) {
         DrawTable(table, daemons);
       } else {
         std::puts(opt.json_lines ? j.dump().c_str()
                                  : ("status    daemon " + id + " NOT RESPONDING: no Status for " +
-                                    Fixed(age, 1) + " s (last said " +
-                                    d.status["state"].get<std::string>() + ")")
+                                    Fixed(age, 1) + " s (last said " + last_state + ")")
                                        .c_str());
         std::fflush(stdout);
       }
