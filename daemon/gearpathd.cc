@@ -462,6 +462,8 @@ void Gearpathd::Impl::DisposeHealth(const std::string& of_daemon,
     CopyTruncated(health_sample->machine_id, id);
     if (Status st = health_writer.Dispose(*health_sample); !st) {
       spdlog::warn("{}: MachineHealth instance not disposed: {}", id, st.error());
+    } else {
+      spdlog::info("{}: no longer served, its MachineHealth instance disposed", id);
     }
   }
 }

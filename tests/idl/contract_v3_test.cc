@@ -127,5 +127,41 @@ TEST(ContractV3, MachineHealthArrivesFieldByFieldOneInstancePerDaemonAndMachine)
   EXPECT_FALSE(got["gearpathd-b/gearbox-99"]->publishing_results);
 }
 
+// What a daemon does when a reload removes a machine: the reader sees the instance disposed,
+// here (its last sample already taken) on an invalid sample carrying only the key.
+TEST(ContractV3, ADisposedMachineHealthInstanceReachesTheReaderWithItsKey) {
+  testing::LoopbackPair pair;
+  testing::LoopbackLink<gearpath_MachineHealth> link(pair);
+  ASSERT_TRUE(link.writer.WaitForReaders(1, seconds(10)));
+  Owned<gearpath_MachineHealth> sent;
+  ASSERT_TRUE(SetString(sent->daemon_id, "gearpathd-a"));
+  ASSERT_TRUE(SetString(sent->machine_id, "gearbox-99"));
+  sent->blocks_received = 1;
+  ASSERT_TRUE(link.writer.Write(*sent));
+  std::map<std::string, Owned<gearpath_MachineHealth>> got;
+  ASSERT_TRUE(TakeSamples(link, 1, got));
+
+  Owned<gearpath_MachineHealth> key;
+  ASSERT_TRUE(SetString(key->daemon_id, "gearpathd-a"));
+  ASSERT_TRUE(SetString(key->machine_id, "gearbox-99"));
+  ASSERT_TRUE(link.writer.Dispose(*key));
+  std::vector<Owned<gearpath_MachineHealth>> samples(4);
+  std::vector<SampleInfo> infos(4);
+  bool disposed = false;
+  const auto deadline = std::chrono::steady_clock::now() + seconds(10);
+  while (!disposed && std::chrono::steady_clock::now() < deadline) {
+    std::array<dds_attach_t, 1> triggered{};
+    ASSERT_TRUE(link.waitset.Wait(triggered, seconds(1)));
+    auto n = link.reader.Take(samples, infos);
+    ASSERT_TRUE(n);
+    for (std::size_t i = 0; i < *n; ++i) {
+      disposed = disposed || (infos[i].instance_state == DDS_NOT_ALIVE_DISPOSED_INSTANCE_STATE &&
+                              GetString(samples[i]->machine_id) == "gearbox-99" &&
+                              GetString(samples[i]->daemon_id) == "gearpathd-a");
+    }
+  }
+  EXPECT_TRUE(disposed);
+}
+
 }  // namespace
 }  // namespace gearpath::dds

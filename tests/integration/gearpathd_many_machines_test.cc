@@ -229,5 +229,60 @@ TEST_F(GearpathdManyMachines, TheMonitorShowsAMachineBeyondTheSixtyFourth) {
   (void)monitor.WaitExit(10s);
 }
 
+// A reload that drops a machine disposes its MachineHealth instance (subscribers and late
+// joiners stop seeing it); one that configures more machines than the block reader was sized
+// for at start-up (max(256, 2 x 100) = 256) is refused with that reason, and the daemon runs
+// on.
+TEST_F(GearpathdManyMachines, AReloadDisposesARemovedMachineAndRefusesMoreThanTheReaderHolds) {
+  const std::string far = MachineId(kFar);
+  ASSERT_TRUE(WaitHealth([&](const gearpath_MachineHealth& h) {
+    return dds::GetString(h.machine_id) == far;
+  }, 30s)) << daemon_->Log();
+
+  json fewer = config_;
+  fewer["machines"].erase(static_cast<std::size_t>(kFar));
+  WriteConfig(fewer);
+  daemon_->Signal(SIGHUP);
+  ASSERT_TRUE(daemon_->WaitForLog("reload: now running 99 machine(s)", 60s)) << daemon_->Log();
+  bool disposed = false;
+  const auto deadline = std::chrono::steady_clock::now() + 30s;
+  std::vector<dds::Owned<gearpath_MachineHealth>> samples(128);
+  std::vector<dds::SampleInfo> infos(128);
+  std::array<dds_attach_t, 1> triggered{};
+  while (!disposed && std::chrono::steady_clock::now() < deadline) {
+    auto n = health_reader_->Take(samples, infos);
+    ASSERT_TRUE(n.ok()) << n.error();
+    for (std::size_t i = 0; i < *n; ++i) {
+      // The state arrives on the instance's last sample if that one is still unread, else on
+      // an invalid sample carrying only the key.
+      disposed = disposed || (infos[i].instance_state == DDS_NOT_ALIVE_DISPOSED_INSTANCE_STATE &&
+                              dds::GetString(samples[i]->machine_id) == far &&
+                              dds::GetString(samples[i]->daemon_id) == daemon_id_);
+    }
+    if (!disposed) ASSERT_TRUE(waitset_->Wait(triggered, 1s).ok());
+  }
+  EXPECT_TRUE(disposed) << "no dispose of " << far << "'s MachineHealth instance";
+  // Every remaining machine is still reported, numbered in the new configuration.
+  ASSERT_TRUE(WaitHealth([&](const gearpath_MachineHealth& h) {
+    return dds::GetString(h.machine_id) == MachineId(98) && h.machine_count == 99;
+  }, 30s)) << daemon_->Log();
+
+  json more = fewer;
+  const json one = more["machines"][1];
+  for (int i = kMachines; i < 258; ++i) {  // 99 + 158 = 257 machines
+    json m = one;
+    m["id"] = MachineId(i);
+    more["machines"].push_back(m);
+  }
+  WriteConfig(more);
+  daemon_->Signal(SIGHUP);
+  EXPECT_TRUE(daemon_->WaitForLog("machines: 257 machines exceed the 256 the block reader was "
+                                  "sized for at start-up",
+                                  30s))
+      << daemon_->Log();
+  EXPECT_TRUE(daemon_->WaitForLog("reload failed, still running the previous configuration", 5s));
+  EXPECT_TRUE(daemon_->running());
+}
+
 }  // namespace
 }  // namespace gearpath::testing

@@ -573,19 +573,19 @@ int RunMonitor(const MonitorOptions& opt) {
         const gearpath_MachineHealth& s = *health.samples[i];
         const std::string machine(GetString(s.machine_id));
         const std::string daemon(GetString(s.daemon_id));
-        if (!health.infos[i].valid_data) {
-          if (health.infos[i].instance_state == DDS_NOT_ALIVE_DISPOSED_INSTANCE_STATE &&
-              terminal && daemons.count(daemon) > 0) {
-            health_changed = daemons[daemon].health.erase(machine) > 0 || health_changed;
-          }
-          continue;
+        // Disposed: on an invalid sample carrying the key, or on the last sample if unread.
+        const bool disposed =
+            health.infos[i].instance_state == DDS_NOT_ALIVE_DISPOSED_INSTANCE_STATE;
+        if (disposed && terminal && daemons.count(daemon) > 0) {
+          health_changed = daemons[daemon].health.erase(machine) > 0 || health_changed;
         }
+        if (!health.infos[i].valid_data) continue;
         // Whichever machine it is about, the sample says the daemon is alive (as Status does).
         daemons[daemon].HeardOfThroughHealth(DaemonStateName(s.daemon_state), Clock::now());
         if (!wanted.empty() && !wanted.count(machine)) continue;
         json j = ToJson(s);
         if (terminal) {
-          daemons[daemon].health[machine] = std::move(j);
+          if (!disposed) daemons[daemon].health[machine] = std::move(j);
           health_changed = true;
         } else {
           std::puts(opt.json_lines ? j.dump().c_str() : PlainLine(j, json()).c_str());
