@@ -158,7 +158,13 @@ int main(int argc, char** argv) {
   dds::Domain domain(domain_id, dds::kLoopbackConfigXml, dds::EnvironmentConfig::kIgnore);
   dds::Participant participant(domain);
   dds::Topic<gearpath_AccelBlock> block_topic(participant);
-  dds::Writer<gearpath_AccelBlock> writer(block_topic);
+  // One writer for every machine: its instance limit must hold them all (the profile's 256 is
+  // per writer; a bridge normally writes one machine).
+  const std::int32_t instances = std::max(dds::kMaxMachinesPerDomain, machines);
+  dds::Qos writer_qos = dds::WriterQos(dds::TopicClass::kBlockStream);
+  writer_qos.ResourceLimits(dds::kBlockHistoryDepth * instances, instances,
+                            dds::kBlockHistoryDepth);
+  dds::Writer<gearpath_AccelBlock> writer(block_topic, writer_qos);
   dds::Topic<gearpath_SuspectedGear> gear_topic(participant);
   dds::Reader<gearpath_SuspectedGear> reader(gear_topic);
   dds::Topic<gearpath_MachineHealth> health_topic(participant);
