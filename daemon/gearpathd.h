@@ -1,23 +1,25 @@
-// Gearpathd: the daemon's lifecycle - DDS endpoints, the processing thread, status, reload, stop.
+// Gearpathd: the daemon's lifecycle - DDS endpoints, the reader, the worker pool, status,
+// reload, stop.
 //
 // Threads (no work in Cyclone listeners, none in signal handlers):
 //  - the lifecycle thread (the caller of Run, normally main): reads SIGTERM/SIGINT/SIGHUP from a
 //    signalfd; on SIGHUP it re-reads the configuration and rebuilds every machine (FRF sets,
-//    processors) itself, off the processing thread, and hands the result over; on SIGTERM it
-//    asks the processing thread to stop and joins it.
-//  - the processing thread: one WaitSet with the AccelBlock ReadCondition and a GuardCondition
-//    (stop / reload handover). It takes one block at a time, processes it INLINE and publishes
-//    the results, and publishes Status when due (the WaitSet timeout is the status timer).
-// Why inline rather than a worker per machine: a block takes milliseconds against a block
-// period of a fraction of a second; blocks of one machine must be processed in order anyway
-// (sequence tracking, baseline learning); the reader history (keep-all, bounded per machine,
-// docs/topics.md) is the queue, so there is no second queue, no copy of the 4 MiB samples and
-// no lock on the counters; and machines can be spread over several daemons (several
-// processes, several cores) by configuration. A stop request is seen between two blocks, so
-// the block in hand is finished and published (a block is far shorter than the 2 s budget).
+//    processors) itself, off the processing threads, and hands the result over; on SIGTERM it
+//    asks the reader to stop and joins it.
+//  - the reader thread: one WaitSet with the AccelBlock ReadCondition and a GuardCondition
+//    (stop / reload handover). It takes one block at a time and queues it on its machine's
+//    lane (daemon/lane_pool.h); when that lane is full it waits for room rather than drop, so
+//    DDS flow control slows the writers. It publishes Status and MachineHealth when due (the
+//    WaitSet timeout is the status timer), also while it waits.
+//  - the workers (`daemon.workers`, 0 = one per hardware thread): each takes the next machine
+//    with queued blocks, processes its blocks in order and publishes the results. One machine
+//    is never on two workers at once (sequence tracking and baseline learning need its blocks
+//    in order); different machines run in parallel. Block buffers circulate between the reader
+//    and the workers, so nothing is allocated per block once warm.
+// A stop request is seen between two blocks, so the blocks in hand are finished and published.
 //
 // systemd: READY=1 once the DDS endpoints exist and every machine is built; RELOADING=1 /
-// READY=1 around a reload; STOPPING=1 on stop; STATUS= lines; WATCHDOG=1 from the processing
+// READY=1 around a reload; STOPPING=1 on stop; STATUS= lines; WATCHDOG=1 from the reader
 // loop on every iteration - also when idle. The watchdog proves the loop is alive (not wedged
 // in a block or in DDS); it does not require blocks to flow, since a machine at standstill is
 // not a daemon failure (missing blocks are visible on Status as received counts that stop).

@@ -3,8 +3,8 @@
 // are handled in parallel, each worker taking the next ready lane in turn (round robin, so a
 // busy machine cannot starve the others).
 //
-// The producer (the DDS reader) never waits on processing: Offer returns false when the lane
-// holds `capacity` items and the caller counts the drop. Handled items come back as spares
+// Offer never blocks: it returns false when the lane holds `capacity` items, and the producer
+// (the DDS reader) then waits for room with WaitForRoom (gearpathd drops only on stop). Handled items come back as spares
 // (TakeSpare), so buffers circulate instead of being allocated per block; the ready queue is a
 // fixed ring. Nothing is allocated per item once the buffers exist.
 //
