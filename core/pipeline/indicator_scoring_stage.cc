@@ -64,10 +64,12 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
     }
     const ConditionSlot& cs = m.condition_slots[s];
     const RateGroup& rg = m.rate_groups[cs.group];
-    // Identified forces are published and serve the localisation, but do not raise the
-    // score: the inversion amplifies noise at ill-conditioned bins, and their indicators
-    // exceeded the limit in ~10x more healthy blocks than the measured ones (docs/diagnosis.md).
-    if (m.condition_signals[cs.signal].source == ConditionSource::kForce) continue;
+    // Identified forces and path contributions are published (and the forces serve the
+    // localisation), but only the measured channels raise the score: the inversion amplifies
+    // noise at ill-conditioned bins, so the forces' indicators exceeded the limit in ~10x more
+    // healthy blocks than the measured ones, and the contributions' in twice as many while
+    // adding almost no detection (docs/diagnosis.md section 10).
+    if (m.condition_signals[cs.signal].source != ConditionSource::kMeasured) continue;
     for (std::size_t k = 0; k < cs.count; ++k) {
       const double d = directional(cs.offset + k) / limit;
       if (d > w.slot_score[s]) w.slot_score[s] = d;

@@ -297,12 +297,11 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
     offset += 2;
   }
   impl->indicator_count = offset;
-  // The forces' entries are not scored (indicator_scoring_stage.h): the z limit counts the rest.
-  // The contributions' synchronous low-order ratio is never computed (it stays 0).
+  // Only the measured channels' condition indicators are scored, not the forces' or the
+  // contributions' (indicator_scoring_stage.h): the z limit counts what is scored.
   for (const ConditionSlot& cs : impl->condition_slots) {
     const ConditionSource source = impl->condition_signals[cs.signal].source;
     if (source == ConditionSource::kMeasured) impl->scored_indicator_count += cs.count;
-    if (source == ConditionSource::kContribution) impl->scored_indicator_count += cs.count - 1;
   }
   for (const SignatureSlot& ss : impl->signature_slots) {
     if (!ss.forces) impl->scored_indicator_count += 2;
