@@ -28,6 +28,7 @@
 #include "tools/bridge/tcp_listener.h"
 #include "tools/commands/commands.h"
 #include "tools/common/block_publisher.h"
+#include "tools/common/cli_checks.h"
 
 namespace gearpath::tools {
 namespace {
@@ -296,15 +297,15 @@ void AddBridgeCommand(CLI::App& app, int& exit_code) {
                   "given; port 0 = any free port)");
   cmd->add_option("--block-length", opt->block_length, "Samples per channel per block")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(Positive());
   cmd->add_option("--settle", opt->settle_s,
                   "Directory mode: seconds a file's size and mtime must stay unchanged before "
                   "it is read")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_option("--poll", opt->poll_s, "Directory mode: seconds between scans")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(Positive());
   cmd->add_option("--order", opt->order, "Directory mode: file order")
       ->check(CLI::IsMember({"name", "mtime"}))
       ->capture_default_str();
@@ -319,10 +320,10 @@ void AddBridgeCommand(CLI::App& app, int& exit_code) {
                   "(repeatable)");
   cmd->add_option("--sample-rate", opt->sample_rate_hz,
                   "Directory mode: sample rate in Hz for text exports that state none")
-      ->check(CLI::PositiveNumber);
+      ->check(Positive());
   cmd->add_option("--shaft-speed", opt->shaft_speed_hz,
                   "Directory mode: input-shaft speed in Hz to send with every block")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_flag("--once", opt->once, "One directory scan, or one TCP connection, then exit");
   cmd->add_option("--topic", opt->topic, "Block topic name (default gearpath/AccelBlock)");
   AddPublishingOptions(cmd, &opt->domain_id, &opt->dds, &opt->subscribers, &opt->wait_s);

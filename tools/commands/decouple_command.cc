@@ -24,6 +24,7 @@
 #include "core/io/uff58.h"
 #include "core/io/uff58_import.h"
 #include "tools/commands/commands.h"
+#include "tools/common/cli_checks.h"
 
 namespace gearpath::tools {
 namespace {
@@ -303,7 +304,7 @@ void AddDecoupleCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--out,-o", opt->out, "Write the decoupled FRF set here");
   cmd->add_option("--max-condition", opt->max_condition,
                   "Largest accepted condition number of (H_pa - H_aa); default 1/(n eps)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_option("--reference", opt->reference,
                   "FRF set of real values (same rows) for the FRAC \"/real value\" columns");
   cmd->add_option("--neighbours", opt->neighbours,

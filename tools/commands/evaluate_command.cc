@@ -19,6 +19,7 @@
 #include "core/evaluation/scenario_matrix.h"
 #include "core/pipeline/block_processor.h"
 #include "tools/commands/commands.h"
+#include "tools/common/cli_checks.h"
 
 namespace gearpath::tools {
 namespace {
@@ -202,7 +203,7 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--sample", args->sample,
                   "run N scenarios of the selection drawn at random, the same N every run "
                   "(e.g. --matrix full --sample 400)")
-      ->check(CLI::PositiveNumber);
+      ->check(Positive());
   cmd->add_option("--family", args->families,
                   "only these families (lumped_perturbed, lumped_torsional, modal_housing)");
   auto* only = cmd->add_flag("--held-out-only", args->held_out_only,
@@ -215,7 +216,7 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
   include->excludes(exclude);
   cmd->add_option("--json", args->json_path, "write every scenario's verdicts and the summary");
   cmd->add_option("--threads", args->threads, "worker threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_flag("--list", args->list, "list the selected scenarios and their seeds, run nothing");
   cmd->add_flag("--quiet", args->quiet, "no progress lines on stderr");
   cmd->add_option("--dump-blocks", args->dump_blocks_path,

@@ -25,12 +25,13 @@
 #include <vector>
 
 #include "idl/dds/domain.h"
-#include "tools/common/dds_options.h"
 #include "idl/dds/gearpath_topics.h"
 #include "idl/dds/sequence.h"
 #include "idl/dds/topic.h"
 #include "idl/dds/waitset.h"
 #include "tools/commands/commands.h"
+#include "tools/common/cli_checks.h"
+#include "tools/common/dds_options.h"
 
 namespace gearpath::tools {
 namespace {
@@ -634,10 +635,10 @@ void AddMonitorCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", opt->json_lines, "One JSON object per line (for scripts)");
   cmd->add_option("--count", opt->count,
                   "Stop after this many verdicts (SuspectedGear samples); 0 = never")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_option("--timeout", opt->timeout_s,
                   "Stop after this many seconds; with --count, exit 1 if it was not reached")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_flag("!--no-status", opt->status, "Do not show the Status topic");
   AddDdsOptions(cmd, &opt->dds);
   cmd->callback([opt, &exit_code] {

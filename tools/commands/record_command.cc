@@ -27,6 +27,7 @@
 #include "idl/dds/topic.h"
 #include "idl/dds/waitset.h"
 #include "tools/commands/commands.h"
+#include "tools/common/cli_checks.h"
 #include "tools/common/dds_options.h"
 #include "tools/common/replay_input.h"
 
@@ -204,9 +205,9 @@ void AddRecordCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--out,-o", opt->out, "Output directory (new or empty)")->required();
   cmd->add_option("--machine", opt->machines, "Only these machine ids (repeatable; default all)");
   cmd->add_option("--count", opt->count, "Stop after this many blocks in total; 0 = never")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_option("--duration", opt->duration_s, "Stop after this many seconds; 0 = never")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_option("--domain", opt->domain_id, "DDS domain id")
       ->capture_default_str()
       ->check(CLI::Range(0, 232));

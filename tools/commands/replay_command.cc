@@ -22,6 +22,7 @@
 #include "core/io/recording.h"
 #include "tools/commands/commands.h"
 #include "tools/common/block_publisher.h"
+#include "tools/common/cli_checks.h"
 #include "tools/common/progress.h"
 #include "tools/common/replay_input.h"
 
@@ -189,32 +190,32 @@ void AddReplayCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"auto", "recording", "text", "uff"}))
       ->capture_default_str();
   cmd->add_option("--speed", opt->speed, "Pacing: N times real time (1 = real time)")
-      ->check(CLI::PositiveNumber)
+      ->check(Positive())
       ->capture_default_str();
   cmd->add_flag("--fast", opt->fast,
                 "As fast as the subscribers take the blocks, nothing lost (reliable)");
   cmd->add_option("--start", opt->in.start_s, "Start at this offset from the first sample, s")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_option("--end", opt->in.end_s, "Stop at this offset from the first sample, s")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_flag("--loop", opt->loop, "Repeat the input until Ctrl-C (t0 and sequence continue)");
   cmd->add_option("--loops", opt->loops, "With --loop: stop after this many passes")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_option("--machine", opt->in.machine,
                   "Machine id to publish under (default: the recording's, or the file name)");
   cmd->add_option("--select", opt->in.select,
                   "From a directory of recordings, only these machines (repeatable)");
   cmd->add_option("--block-length", opt->in.block_length,
                   "Continuous inputs: samples per channel per block (default 4096)")
-      ->check(CLI::PositiveNumber);
+      ->check(Positive());
   cmd->add_option("--channel", opt->in.channel_map,
                   "Rename or drop a channel: COLUMN=SENSOR:AXIS or COLUMN=- (repeatable)");
   cmd->add_option("--sample-rate", opt->in.sample_rate_hz,
                   "Text exports: sample rate in Hz when the header states none")
-      ->check(CLI::PositiveNumber);
+      ->check(Positive());
   cmd->add_option("--shaft-speed", opt->in.shaft_speed_hz,
                   "Continuous inputs: input-shaft speed in Hz to send with every block")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   AddPublishingOptions(cmd, &opt->domain_id, &opt->dds, &opt->subscribers, &opt->wait_s);
   cmd->add_option("--write-recording", opt->write_recording,
                   "Write the blocks as a recording into this directory instead of publishing");

@@ -25,6 +25,7 @@
 #include "core/simulation/model_frf_set.h"
 #include "tools/commands/commands.h"
 #include "tools/common/block_publisher.h"
+#include "tools/common/cli_checks.h"
 
 namespace gearpath::tools {
 namespace {
@@ -228,21 +229,21 @@ void AddSimCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--gear", opt->gear, "faulty gear: G1, G2, G3 or G4");
   cmd->add_option("--severity", opt->severity, "fault depth scale (1 = the seed's damage)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_option("--speed-rpm", opt->speed_rpm, "input-shaft speed, r/min")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(Positive());
   cmd->add_option("--noise", opt->noise, "measurement noise std / noise-free RMS per channel (0: none)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_option("--seed", opt->seed, "seed of phases, damaged tooth and noise")
       ->capture_default_str();
   cmd->add_option("--sample-rate", opt->sample_rate, "Hz")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(Positive());
   cmd->add_option("--block-length", opt->block_length, "samples per channel and block")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(Positive());
   cmd->add_option("--blocks", opt->blocks, "number of blocks to generate")->capture_default_str();
   cmd->add_option("--machine-id", opt->machine_id, "machine id of the blocks")
       ->capture_default_str();
@@ -259,7 +260,7 @@ void AddSimCommand(CLI::App& app, int& exit_code) {
   AddDdsOptions(cmd, &opt->dds);
   cmd->add_option("--speed", opt->speedup, "with --publish: pace at N x real time")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(Positive());
   cmd->add_flag("--fast", opt->fast,
                 "with --publish: as fast as the daemon takes them (nothing is lost)");
   cmd->add_option("--write-frf-set", opt->frf_set_dir,

@@ -9,6 +9,7 @@
 
 #include "core/inverse/table1_validation.h"
 #include "tools/commands/commands.h"
+#include "tools/common/cli_checks.h"
 
 namespace gearpath::tools {
 namespace {
@@ -54,7 +55,7 @@ void AddValidateCommand(CLI::App& app, int& exit_code) {
                   "errors on the Table-1 model");
   cmd->add_option("--draws", options->draws, "noise draws per level")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(Positive());
   cmd->add_option("--seed", options->seed, "random seed of the noise")->capture_default_str();
   cmd->add_option("--band", *band, "frequency band F_LO F_HI in Hz")
       ->expected(2)

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "tools/common/cli_checks.h"
+
 namespace gearpath::tools {
 
 namespace fs = std::filesystem;
@@ -29,10 +31,10 @@ void AddPublishingOptions(CLI::App* cmd, int* domain_id, DdsOptions* options, in
   cmd->add_option("--subscribers", *subscribers,
                   "Wait for this many subscribers before the first block")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
   cmd->add_option("--wait", *wait_s, "Seconds to wait for the subscribers before the first block")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative());
 }
 
 dds::DomainConfig ToolDomainConfig(const DdsOptions& options) {
