@@ -188,6 +188,25 @@ OmittedIndicators FillConditionIndicators(std::string_view machine_id, const Blo
   return omitted;
 }
 
+namespace {
+
+// The per-machine counters that Status (MachineStatus) and MachineHealth both carry: two wire
+// types with the same field names, so one template fills either.
+template <class WireCounters>
+void FillCommonCounters(const MachineCounters& c, WireCounters& out) noexcept {
+  out.blocks_received = c.received;
+  out.blocks_processed = c.processed;
+  out.blocks_rejected = c.rejected;
+  CopyTruncated(out.last_rejection_reason, c.last_rejection);
+  out.last_alpha = c.last_alpha;
+  out.last_condition_number = c.last_condition;
+  out.last_relative_residual = c.last_residual;
+  out.latency_last_ms = c.latency_last_ms;
+  out.latency_max_ms = c.latency_max_ms;
+}
+
+}  // namespace
+
 void FillStatus(const StatusFigures& figures, std::span<const std::string> machine_ids,
                 const std::map<std::string, MachineCounters, std::less<>>& counters,
                 gearpath_Status& out) noexcept {
@@ -203,15 +222,7 @@ void FillStatus(const StatusFigures& figures, std::span<const std::string> machi
     const MachineCounters& c = it == counters.end() ? kNone : it->second;
     gearpath_MachineStatus& m = machines[i];
     CopyTruncated(m.machine_id, machine_ids[i]);
-    m.blocks_received = c.received;
-    m.blocks_processed = c.processed;
-    m.blocks_rejected = c.rejected;
-    CopyTruncated(m.last_rejection_reason, c.last_rejection);
-    m.last_alpha = c.last_alpha;
-    m.last_condition_number = c.last_condition;
-    m.last_relative_residual = c.last_residual;
-    m.latency_last_ms = c.latency_last_ms;
-    m.latency_max_ms = c.latency_max_ms;
+    FillCommonCounters(c, m);
   }
 }
 
@@ -228,16 +239,8 @@ void FillMachineHealth(const MachineHealthFigures& figures, std::string_view mac
   out.publishing_results = figures.publishing_results;
   out.last_block_sequence = c.last_sequence;
   out.last_block_t0_ns = c.last_t0_ns;
-  out.blocks_received = c.received;
-  out.blocks_processed = c.processed;
-  out.blocks_rejected = c.rejected;
   out.blocks_lost = c.lost;
-  CopyTruncated(out.last_rejection_reason, c.last_rejection);
-  out.last_alpha = c.last_alpha;
-  out.last_condition_number = c.last_condition;
-  out.last_relative_residual = c.last_residual;
-  out.latency_last_ms = c.latency_last_ms;
-  out.latency_max_ms = c.latency_max_ms;
+  FillCommonCounters(c, out);
 }
 
 }  // namespace gearpath::daemon
