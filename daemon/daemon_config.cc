@@ -8,6 +8,7 @@
 
 #include "core/io/json_read.h"
 #include "daemon/config_schema.h"
+#include "daemon/ip_address.h"
 
 namespace gearpath::daemon {
 namespace {
@@ -209,6 +210,18 @@ Result<DaemonConfig> ParseDaemonConfig(std::string_view text, std::string_view o
     errors.push_back("standby.primary: a daemon cannot stand by for itself (daemon.id is the "
                      "same)");
   }
+  const json& metrics = c["metrics"];
+  const auto metrics_address = metrics["address"].get<std::string>();
+  if (!IsNumericAddress(metrics_address)) {
+    errors.push_back(fmt::format("metrics.address: expected a numeric IPv4 or IPv6 address "
+                                 "(e.g. 127.0.0.1 or ::1), got \"{}\"",
+                                 metrics_address));
+  } else if (!IsLoopbackAddress(metrics_address) && !metrics["allow_remote"].get<bool>()) {
+    errors.push_back(fmt::format("metrics.address: \"{}\" is not a loopback address; the "
+                                 "endpoint has no TLS and no authentication, so set "
+                                 "metrics.allow_remote to true to serve it beyond this host",
+                                 metrics_address));
+  }
   if (!errors.empty()) return Error{JoinLines(errors)};
 
   DaemonConfig config;
@@ -233,6 +246,8 @@ Result<DaemonConfig> ParseDaemonConfig(std::string_view text, std::string_view o
   config.dds_security = {security["identity_ca"],    security["identity_certificate"],
                          security["identity_private_key"], security["permissions_ca"],
                          security["governance"],     security["permissions"]};
+  config.metrics = {metrics["enabled"], metrics_address, metrics["port"],
+                    metrics["allow_remote"]};
   for (std::size_t i = 0; i < machines.size(); ++i) {
     config.machines.push_back({fmt::format("machines[{}]", i), machines[i]["id"],
                                machines[i]["frf_set"], machines[i]});

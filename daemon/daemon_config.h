@@ -39,6 +39,15 @@ struct DdsSecurityFiles {
   bool operator==(const DdsSecurityFiles&) const = default;
 };
 
+// metrics: the Prometheus endpoint (docs/deployment.md, "Metrics").
+struct MetricsConfig {
+  bool enabled = false;
+  std::string address = "127.0.0.1";  // numeric; loopback unless allow_remote
+  int port = 9469;                     // 0: a free port, logged
+  bool allow_remote = false;
+  bool operator==(const MetricsConfig&) const = default;
+};
+
 struct MachineConfig {
   std::string key_path;   // "machines[2]", for messages
   std::string id;
@@ -62,6 +71,7 @@ struct DaemonConfig {
   TopicNames topics;
   std::string dds_config_file;    // dds.config: empty = CYCLONEDDS_URI, else loopback
   DdsSecurityFiles dds_security;  // dds.security
+  MetricsConfig metrics;
   std::vector<MachineConfig> machines;
   nlohmann::json normalized;  // the whole config with defaults filled in
 };

@@ -122,6 +122,24 @@ ParamSpec DaemonSection() {
                1, 1024, 32)});
 }
 
+ParamSpec MetricsSection() {
+  return Object(
+      "metrics",
+      "Prometheus metrics over HTTP (GET /metrics; every metric in docs/deployment.md). No TLS "
+      "and no authentication: keep it on loopback, or put a reverse proxy in front.",
+      {Boolean("enabled", "Serve the metrics endpoint.", false),
+       String("address",
+              "Numeric IPv4 or IPv6 address to listen on. A non-loopback address (e.g. "
+              "`0.0.0.0`) is refused unless `allow_remote` is true.",
+              "127.0.0.1", 1, 64),
+       Integer("port", "TCP port; 0: a free port chosen at start (the log names it).", 0, 65535,
+               9469),
+       Boolean("allow_remote",
+               "Allow a non-loopback `address`: anyone who reaches it reads every machine's "
+               "counters and verdict states.",
+               false)});
+}
+
 ParamSpec StandbySection() {
   return Object(
       "standby",
@@ -433,7 +451,7 @@ ParamSpec MachineSpec() {
 const ParamSpec& DaemonConfigSchema() {
   static const ParamSpec schema = Object(
       "", "gearpathd configuration",
-      {DaemonSection(), StateSection(), StandbySection(), DdsSection(),
+      {DaemonSection(), StateSection(), StandbySection(), DdsSection(), MetricsSection(),
        Array("machines",
              "The gearboxes this daemon watches; blocks of other machines are ignored. No "
              "fixed cap (4096 is a sanity bound): Status lists the first 64, MachineHealth "

@@ -55,7 +55,7 @@ TEST(DaemonConfig, RejectsAnUnknownKeyNamingItsPath) {
   EXPECT_EQ(errors.rfind("machines[0].analysis.inverse.alpah: unknown key", 0), 0u) << errors;
   c = DefaultJson();
   c["logging"] = json::object();
-  EXPECT_EQ(ErrorsOf(c).rfind("logging: unknown key (allowed here: daemon, state, standby, dds, machines)", 0),
+  EXPECT_EQ(ErrorsOf(c).rfind("logging: unknown key (allowed here: daemon, state, standby, dds, metrics, machines)", 0),
             0u);
 }
 
