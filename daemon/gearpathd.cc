@@ -14,11 +14,13 @@
 
 #include "daemon/dds_bridge.h"
 #include "daemon/dds_setup.h"
+#include "daemon/gearpathd_metrics.h"
 #include "daemon/lane_pool.h"
 #include "idl/dds/accel_block_wire.h"
 #include "daemon/machine_id_filter.h"
 #include "daemon/machine_runtime.h"
 #include "daemon/machine_state_store.h"
+#include "daemon/metrics_server.h"
 #include "daemon/systemd_notify.h"
 #include "idl/dds/gearpath_topics.h"
 
@@ -73,6 +75,7 @@ struct QueuedBlock {
   dds::Owned<gearpath_AccelBlock> sample;
   dds::SampleInfo info{};
   std::uint64_t dropped_before = 0;  // blocks of the machine dropped (queue full) just before
+  Clock::time_point taken_at{};      // taken from the DDS reader (the latency histogram's start)
 };
 using BlockLanes = LanePool<QueuedBlock>;
 
@@ -199,6 +202,12 @@ struct Gearpathd::Impl {
   void SaveDueMachines(bool all);
   void WatchPrimary();
 
+  // ---- metrics thread ----
+  DaemonMetrics CollectMetrics();
+  // ---- lifecycle thread ----
+  Status StartMetrics(const MetricsConfig& config);
+  Status ChangeMetrics(const MetricsConfig& next, const MetricsConfig& previous);
+
   DaemonOptions options;
   std::optional<MachineStateStore> store;  // none: nothing is kept across restarts
   MachineIdFilter machine_filter;  // before the block reader, which it filters
@@ -237,6 +246,12 @@ struct Gearpathd::Impl {
   std::atomic<std::uint64_t> state_save_failures{0};
   std::atomic<bool> loop_failed{false};
   std::atomic<int> state{gearpath_STARTING};
+  // Blocks of machines not (or no longer) configured; the reader counts, Status and the
+  // metrics read.
+  std::atomic<std::uint64_t> foreign_blocks{0};
+  // Held by the reader thread while it changes the lanes map, machine_ids or daemon_id (a
+  // reload), and by the metrics thread while it reads them; the reader reads them without it.
+  std::mutex metrics_view_mutex;
   std::mutex pending_mutex;
   std::optional<Generation> pending;
 
@@ -259,7 +274,6 @@ struct Gearpathd::Impl {
   bool primary_seen = false;  // its Status has arrived at least once (logged once)
   std::vector<dds::Owned<gearpath_Status>> status_samples;
   std::vector<dds::SampleInfo> status_infos;
-  std::uint64_t foreign_blocks = 0;
   std::uint64_t foreign_blocks_at_last_summary = 0;
   Clock::time_point next_status{};
   Clock::time_point next_throughput{};
@@ -277,6 +291,8 @@ struct Gearpathd::Impl {
   std::vector<WorkerScratch> scratch;  // one per worker
   std::map<std::string, std::unique_ptr<MachineLane>, std::less<>> lanes;  // reader thread
   std::unique_ptr<BlockLanes> pool;
+  // Lifecycle thread. Last: it stops (and its thread with it) before anything it reads goes.
+  std::unique_ptr<MetricsServer> metrics_server;
 };
 
 // A machine of a new generation takes over what its predecessor learned (reload) or what was
@@ -332,6 +348,7 @@ void Gearpathd::Impl::Adopt(Generation generation) {
   }
   // No block is processed while the machines change hands; blocks queued meanwhile wait.
   pool->Pause();
+  std::lock_guard metrics_view(metrics_view_mutex);
   MachineSet previous = std::move(machines);
   machines = std::move(generation.machines);
   const std::vector<std::string> previous_ids = std::exchange(machine_ids, {});
@@ -724,6 +741,7 @@ void Gearpathd::Impl::HandleBlock(WorkerScratch& ws, MachineLane& lane, QueuedBl
     c.fault_state = r.verdict.state;
     c.last_sequence = r.sequence;
     c.last_t0_ns = r.t0_ns;
+    CaptureLatestIndicators(r, c.latest);
   }
   MarkChanged(lane, r.verdict.state);
   if (lost > 0) {
@@ -754,14 +772,20 @@ void Gearpathd::Impl::HandleBlock(WorkerScratch& ws, MachineLane& lane, QueuedBl
   } else {
     ++results_withheld;  // standing by: the primary publishes this block's results
   }
-  if (block.info.source_timestamp > 0) {
-    // Writer's timestamp to results published: includes the time the block waited in the
-    // reader's history and its machine's queue, which is what a late result costs the plant.
-    const double latency_ms =
-        std::max(0.0, static_cast<double>(RealtimeNs() - block.info.source_timestamp) * 1e-6);
+  {
+    // The metrics histogram: taken from the reader to results written, on this host's steady
+    // clock (no publisher clock in it).
+    const double handled_s = duration<double>(Clock::now() - block.taken_at).count();
     std::lock_guard lock(lane.counters_mutex);
-    c.latency_last_ms = latency_ms;
-    c.latency_max_ms = std::max(c.latency_max_ms, latency_ms);
+    c.latency.Observe(handled_s);
+    if (block.info.source_timestamp > 0) {
+      // Writer's timestamp to results published: includes the time the block waited in the
+      // reader's history and its machine's queue, which is what a late result costs the plant.
+      const double latency_ms = std::max(
+          0.0, static_cast<double>(RealtimeNs() - block.info.source_timestamp) * 1e-6);
+      c.latency_last_ms = latency_ms;
+      c.latency_max_ms = std::max(c.latency_max_ms, latency_ms);
+    }
   }
   spdlog::debug("{}: block {} -> path {}, {} {}", m.id, r.sequence, r.dominant_path_name,
                 ToString(r.verdict.state), r.verdict.gear_name);
@@ -785,6 +809,7 @@ void Gearpathd::Impl::Dispatch() {
   offered.sample = std::move(samples[0]);
   offered.info = infos[0];
   offered.dropped_before = lane.pending_drops;
+  offered.taken_at = Clock::now();
   bool queued = pool->Offer(lane, offered);
   while (!queued && !stop_requested.load()) {
     if (!pool->WaitForRoom(lane, kRoomWait)) {
@@ -869,6 +894,8 @@ void Gearpathd::Impl::Reload() {
     auto machines_built = BuildMachines(*config, frf_registry);
     if (!machines_built) {
       failure = machines_built.error();
+    } else if (Status st = ChangeMetrics(config->metrics, lifecycle_config.metrics); !st) {
+      failure = st.error();
     } else {
       built.emplace(std::move(machines_built.value()));
     }
@@ -890,6 +917,69 @@ void Gearpathd::Impl::Reload() {
   state = gearpath_RUNNING;
   NotifySystemd(fmt::format("READY=1\nSTATUS=running: {} machine(s) (reloaded)",
                             lifecycle_config.machines.size()));
+}
+
+// Metrics thread: a copy of every machine's counters (under its counters_mutex, as Status
+// copies them) and of the daemon's own figures.
+DaemonMetrics Gearpathd::Impl::CollectMetrics() {
+  DaemonMetrics m;
+  m.version = options.version;
+  const auto s = static_cast<std::size_t>(state.load());
+  m.state = s < std::size(kDaemonStateNames) ? kDaemonStateNames[s] : "unknown";
+  m.uptime_s = duration<double>(Clock::now() - started).count();
+  m.publishing_results = publishing.load();
+  m.foreign_blocks = foreign_blocks.load() + machine_filter.dropped();
+  m.publish_failures = publish_failures.load();
+  m.results_withheld = results_withheld.load();
+  m.state_save_failures = state_save_failures.load();
+  std::lock_guard view(metrics_view_mutex);
+  m.daemon_id = daemon_id;
+  m.machines.reserve(machine_ids.size());
+  for (const std::string& id : machine_ids) {
+    const auto it = lanes.find(id);
+    if (it == lanes.end()) continue;
+    MachineMetrics& machine = m.machines.emplace_back();
+    machine.id = id;
+    std::lock_guard lock(it->second->counters_mutex);
+    machine.counters = it->second->counters;
+  }
+  return m;
+}
+
+// Lifecycle thread: starts the endpoint `config` asks for (none when disabled).
+Status Gearpathd::Impl::StartMetrics(const MetricsConfig& config) {
+  metrics_server.reset();
+  if (!config.enabled) return {};
+  auto server = MetricsServer::Start(config.address, config.port,
+                                     [this] { return RenderMetrics(CollectMetrics()); });
+  if (!server) return Error{server.error()};
+  metrics_server = std::move(server.value());
+  spdlog::info("metrics endpoint listening on {}", metrics_server->url());
+  if (config.allow_remote) {
+    spdlog::warn("metrics endpoint on {} (metrics.allow_remote): no TLS, no authentication; "
+                 "anyone who reaches it reads every machine's counters and states",
+                 config.address);
+  }
+  return {};
+}
+
+// Lifecycle thread, on reload: a changed `metrics` restarts the endpoint (the old one stops
+// first, so the same port can be taken again). If the new one cannot start, the old one is
+// started again and the reload fails with the reason.
+Status Gearpathd::Impl::ChangeMetrics(const MetricsConfig& next, const MetricsConfig& previous) {
+  if (next == previous) return {};
+  if (!next.enabled) {
+    if (metrics_server) spdlog::info("metrics endpoint stopped (metrics.enabled is false)");
+    metrics_server.reset();
+    return {};
+  }
+  Status opened = StartMetrics(next);
+  if (opened) return {};
+  if (Status back = StartMetrics(previous); !back) {
+    spdlog::error("{}; the previous metrics endpoint could not be restarted either: {}",
+                  opened.error(), back.error());
+  }
+  return opened;
 }
 
 int Gearpathd::Impl::Run(const SignalEvents& signals) {
@@ -940,8 +1030,10 @@ Result<std::unique_ptr<Gearpathd>> Gearpathd::Create(DaemonConfig config, Machin
     spdlog::info("machine state kept in {}", dir);
   }
   try {
+    const MetricsConfig metrics = config.metrics;
     auto impl = std::make_unique<Impl>(Generation{std::move(config), std::move(machines)},
                                        std::move(options), std::move(store));
+    if (Status st = impl->StartMetrics(metrics); !st) return Error{st.error()};
     return std::unique_ptr<Gearpathd>(new Gearpathd(std::move(impl)));
   } catch (const std::exception& e) {
     return Error{fmt::format("DDS set-up failed: {}", e.what())};

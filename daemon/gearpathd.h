@@ -18,6 +18,12 @@
 //    and the workers, so nothing is allocated per block once warm.
 // A stop request is seen between two blocks, so the blocks in hand are finished and published.
 //
+//  - the metrics thread (metrics.enabled; libmicrohttpd's, daemon/metrics_server.h): on each
+//    scrape it copies every lane's counters under that lane's counters_mutex, as Status does;
+//    the workers do nothing for it beyond a histogram bucket and a few figures of the last
+//    block, written with their other counters. The lifecycle thread starts it, and restarts
+//    it on a reload that changes `metrics`.
+//
 // systemd: READY=1 once the DDS endpoints exist and every machine is built; RELOADING=1 /
 // READY=1 around a reload; STOPPING=1 on stop; STATUS= lines; WATCHDOG=1 from the reader
 // loop on every iteration - also when idle. The watchdog proves the loop is alive (not wedged
@@ -38,6 +44,7 @@ namespace gearpath::daemon {
 struct DaemonOptions {
   std::string config_path;         // re-read on SIGHUP; empty: the embedded default
   std::string log_level_override;  // --log-level; empty: the configuration's
+  std::string version;             // GEARPATH_VERSION, for the metrics' build info
 };
 
 class Gearpathd {

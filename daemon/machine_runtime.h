@@ -19,6 +19,8 @@
 #include "core/pipeline/block_processor.h"
 #include "daemon/daemon_config.h"
 #include "daemon/frf_registry.h"
+#include "daemon/latency_histogram.h"
+#include "daemon/latest_indicators.h"
 
 namespace gearpath::daemon {
 
@@ -59,6 +61,10 @@ struct MachineCounters {
   double last_residual = 0.0;
   double latency_last_ms = 0.0;
   double latency_max_ms = 0.0;
+  // For the metrics endpoint (not saved): block taken -> results written, and the last
+  // accepted block's figures. Updated with the counters above, under the same lock.
+  LatencyHistogram latency;
+  LatestIndicators latest;
   // The last accepted block and its verdict state, for MachineHealth (not saved: the state
   // is restored from the saved alarm model, the block comes again).
   FaultState fault_state = FaultState::kLearning;

@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
   }
 
   auto daemon = Gearpathd::Create(std::move(config.value()), std::move(machines.value()),
-                                  DaemonOptions{config_path, log_level});
+                                  DaemonOptions{config_path, log_level, GEARPATH_VERSION});
   if (!daemon) {
     spdlog::critical("{}", daemon.error());
     return kExitFailure;

@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libfftw3-dev
   cyclonedds-dev cyclonedds-tools
   libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev libsystemd-dev
+  libmicrohttpd-dev  # daemon/metrics_server.cc: the metrics endpoint (metrics.enabled)
   libgtest-dev libgmock-dev libbenchmark-dev valgrind
   python3 python3-numpy
   openssl  # tools/make-security-fixtures.sh: the DDS Security tests make their PKI at test time
