@@ -55,7 +55,7 @@ DaemonMetrics TwoMachines() {
   return m;
 }
 
-TEST(GearpathdMetrics, DaemonFiguresAndBuildInfo) {
+TEST(MetricsCatalogue, DaemonFiguresAndBuildInfo) {
   const std::string text = RenderMetrics(TwoMachines());
   EXPECT_TRUE(Has(text, "gearpath_build_info{version=\"1.2.3\",daemon=\"gpd\"} 1")) << text;
   EXPECT_TRUE(Has(text, "gearpath_daemon_uptime_seconds 12.5"));
@@ -65,7 +65,7 @@ TEST(GearpathdMetrics, DaemonFiguresAndBuildInfo) {
   EXPECT_TRUE(Has(text, "gearpath_foreign_blocks_total 4"));
 }
 
-TEST(GearpathdMetrics, EveryFamilyHasOneHelpAndOneTypeLine) {
+TEST(MetricsCatalogue, EveryFamilyHasOneHelpAndOneTypeLine) {
   const std::string text = RenderMetrics(TwoMachines());
   std::istringstream in(text);
   std::map<std::string, int> types;
@@ -79,7 +79,7 @@ TEST(GearpathdMetrics, EveryFamilyHasOneHelpAndOneTypeLine) {
   }
 }
 
-TEST(GearpathdMetrics, BlockCountersPerMachineAndEveryRejectReasonFromZero) {
+TEST(MetricsCatalogue, BlockCountersPerMachineAndEveryRejectReasonFromZero) {
   const std::string text = RenderMetrics(TwoMachines());
   EXPECT_TRUE(Has(text, "gearpath_blocks_received_total{machine=\"a\"} 7"));
   EXPECT_TRUE(Has(text, "gearpath_blocks_processed_total{machine=\"a\"} 5"));
@@ -94,7 +94,7 @@ TEST(GearpathdMetrics, BlockCountersPerMachineAndEveryRejectReasonFromZero) {
   EXPECT_EQ(CountLinesStartingWith(text, "gearpath_blocks_rejected_total{machine=\"a\""), 15u);
 }
 
-TEST(GearpathdMetrics, LatencyHistogramIsCumulativeOverTheFixedBuckets) {
+TEST(MetricsCatalogue, LatencyHistogramIsCumulativeOverTheFixedBuckets) {
   const std::string text = RenderMetrics(TwoMachines());
   const std::string b = "gearpath_block_latency_seconds_bucket{machine=\"a\",le=";
   EXPECT_TRUE(Has(text, b + "\"0.005\"} 1")) << text;
@@ -109,7 +109,7 @@ TEST(GearpathdMetrics, LatencyHistogramIsCumulativeOverTheFixedBuckets) {
             12u);
 }
 
-TEST(GearpathdMetrics, MachineStateIsOneHotOverTheFourVerdictStates) {
+TEST(MetricsCatalogue, MachineStateIsOneHotOverTheFourVerdictStates) {
   const std::string text = RenderMetrics(TwoMachines());
   for (const char* s : {"learning", "no_fault", "suspected"}) {
     EXPECT_TRUE(Has(text, std::string("gearpath_machine_state{machine=\"a\",state=\"") + s +
@@ -120,7 +120,7 @@ TEST(GearpathdMetrics, MachineStateIsOneHotOverTheFourVerdictStates) {
   EXPECT_EQ(CountLinesStartingWith(text, "gearpath_machine_state{"), 8u);
 }
 
-TEST(GearpathdMetrics, IndicatorSeriesOnlyForMachinesWithAnAcceptedBlock) {
+TEST(MetricsCatalogue, IndicatorSeriesOnlyForMachinesWithAnAcceptedBlock) {
   const std::string text = RenderMetrics(TwoMachines());
   EXPECT_TRUE(Has(text, "gearpath_machine_score{machine=\"a\"} 1.5"));
   EXPECT_TRUE(Has(text, "gearpath_machine_dominant_path_share{machine=\"a\",path=\"B5x\"} 0.25"));
