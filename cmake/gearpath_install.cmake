@@ -6,6 +6,7 @@
 #   /lib/systemd/system/gearpathd.service                 the hardened unit, not enabled
 #   /usr/share/doc/gearpath/                              README and docs/*.md
 #   /usr/share/gearpath/idl/gearpath.idl                  the DDS contract, for other vendors
+#   /usr/share/gearpath/fastdds/fastdds-profiles.xml      Fast DDS client profiles (deployment.md)
 # The unit and the paths in it are those of config/gearpathd.service.
 include(GNUInstallDirs)
 
@@ -18,6 +19,7 @@ install(FILES README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 file(GLOB gearpath_docs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/docs/*.md)
 install(FILES ${gearpath_docs} DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(FILES idl/gearpath.idl DESTINATION ${CMAKE_INSTALL_DATADIR}/gearpath/idl)
+install(FILES config/fastdds-profiles.xml DESTINATION ${CMAKE_INSTALL_DATADIR}/gearpath/fastdds)
 
 set(CPACK_PACKAGE_NAME gearpath)
 set(CPACK_PACKAGE_VENDOR "gearpath")

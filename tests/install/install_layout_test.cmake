@@ -10,7 +10,8 @@ endif()
 foreach(f ${PREFIX}/bin/gearpathd ${PREFIX}/bin/gearpath ${SYSCONFDIR}/gearpath/gearpathd.json
           ${UNITDIR}/gearpathd.service ${PREFIX}/share/doc/gearpath/README.md
           ${PREFIX}/share/doc/gearpath/configuration.md ${PREFIX}/share/doc/gearpath/method.md
-          ${PREFIX}/share/gearpath/idl/gearpath.idl)
+          ${PREFIX}/share/gearpath/idl/gearpath.idl
+          ${PREFIX}/share/gearpath/fastdds/fastdds-profiles.xml)
   if(NOT EXISTS ${DESTDIR}${f})
     message(FATAL_ERROR "not installed: ${f}")
   endif()
