@@ -973,9 +973,12 @@ Status Gearpathd::Impl::ChangeMetrics(const MetricsConfig& next, const MetricsCo
     metrics_server.reset();
     return {};
   }
+  // The port the running endpoint has, so that one on port 0 comes back where it was.
+  MetricsConfig restore = previous;
+  if (metrics_server && restore.port == 0) restore.port = metrics_server->port();
   Status opened = StartMetrics(next);
   if (opened) return {};
-  if (Status back = StartMetrics(previous); !back) {
+  if (Status back = StartMetrics(restore); !back) {
     spdlog::error("{}; the previous metrics endpoint could not be restarted either: {}",
                   opened.error(), back.error());
   }

@@ -103,9 +103,10 @@ Result<std::unique_ptr<MetricsServer>> MetricsServer::Start(const std::string& a
   errno = 0;
   impl->daemon = MHD_start_daemon(
       flags, static_cast<std::uint16_t>(port), nullptr, nullptr, &Impl::Handle, impl.get(),
-      MHD_OPTION_SOCK_ADDR, reinterpret_cast<sockaddr*>(&sa), MHD_OPTION_CONNECTION_LIMIT,
-      kConnectionLimit, MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutS,
-      MHD_OPTION_EXTERNAL_LOGGER, &Impl::Log, impl.get(), MHD_OPTION_END);
+      // The logger first: libmicrohttpd prints to stderr whatever comes before it.
+      MHD_OPTION_EXTERNAL_LOGGER, &Impl::Log, impl.get(), MHD_OPTION_SOCK_ADDR,
+      reinterpret_cast<sockaddr*>(&sa), MHD_OPTION_CONNECTION_LIMIT, kConnectionLimit,
+      MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutS, MHD_OPTION_END);
   const int start_errno = errno;
   if (impl->daemon == nullptr) {
     std::string why = impl->start_errors;

@@ -193,5 +193,76 @@ TEST_F(GearpathdMetrics, AReloadThatDisablesMetricsClosesTheEndpoint) {
   EXPECT_EQ(HttpGet(port, "/metrics").status, 0) << "the endpoint still answers";
 }
 
+// Listens on a free loopback port until destroyed; port() says which.
+class PortHolder {
+ public:
+  PortHolder() : fd_(socket(AF_INET, SOCK_STREAM, 0)) {
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof(addr);
+    if (fd_ >= 0 && bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) == 0 &&
+        listen(fd_, 1) == 0 &&
+        getsockname(fd_, reinterpret_cast<sockaddr*>(&addr), &len) == 0) {
+      port_ = ntohs(addr.sin_port);
+    }
+  }
+  ~PortHolder() {
+    if (fd_ >= 0) close(fd_);
+  }
+  PortHolder(const PortHolder&) = delete;
+  PortHolder& operator=(const PortHolder&) = delete;
+  int port() const { return port_; }
+
+ private:
+  int fd_;
+  int port_ = 0;
+};
+
+TEST_F(GearpathdMetrics, AReloadOntoABusyPortIsRefusedAndTheEndpointStaysWhereItWas) {
+  const int port = MetricsPort();
+  ASSERT_GT(port, 0) << daemon_->Log();
+  PortHolder busy;
+  ASSERT_GT(busy.port(), 0);
+  json moved = config_;
+  moved["metrics"]["port"] = busy.port();
+  WriteConfig(moved);
+  daemon_->Signal(SIGHUP);
+  ASSERT_TRUE(daemon_->WaitForLog("reload failed, still running the previous configuration",
+                                  60s))
+      << daemon_->Log();
+  EXPECT_NE(daemon_->Log().find("metrics endpoint: cannot listen on 127.0.0.1:" +
+                                std::to_string(busy.port())),
+            std::string::npos);
+  // The previous endpoint is back on its own port (chosen by the kernel at start).
+  EXPECT_EQ(HttpGet(port, "/metrics").status, 200);
+}
+
+// A port that cannot be bound stops the start-up (exit 1) with the address in the message:
+// an operator who asked for metrics learns at once that there are none.
+TEST(GearpathdMetricsStartup, APortInUseStopsTheStartWithExitCode1) {
+  PortHolder busy;
+  const int port = busy.port();
+  ASSERT_GT(port, 0);
+
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("gearpathd_metrics_port_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  json config = json::parse(daemon::DefaultConfigText());
+  config["dds"]["domain_id"] = 100 + static_cast<int>(getpid()) % 120;
+  config["metrics"] = {{"enabled", true}, {"port", port}};
+  const std::string config_path = (dir / "gearpathd.json").string();
+  std::ofstream(config_path) << config.dump(2);
+  std::string log;
+  const auto code = RunToCompletion(GEARPATHD_PATH, {"--config", config_path},
+                                    (dir / "gearpathd.log").string(), &log, 60s);
+  std::filesystem::remove_all(dir);
+  ASSERT_TRUE(code.has_value()) << "gearpathd did not stop:\n" << log;
+  EXPECT_EQ(*code, 1) << log;
+  EXPECT_NE(log.find("metrics endpoint: cannot listen on 127.0.0.1:" + std::to_string(port)),
+            std::string::npos)
+      << log;
+}
+
 }  // namespace
 }  // namespace gearpath::testing
