@@ -361,17 +361,17 @@ int RobustBaseline::ZScores(std::span<const double> values, std::span<double> z)
   return non_finite;
 }
 
-double RobustBaseline::ZForFalseAlarmRate(double per_block_rate, int tests,
-                                          int baseline_blocks) noexcept {
+double RobustBaseline::ZForFalseAlarmRate(double per_block_rate, int tests, int baseline_blocks,
+                                          int window_blocks) noexcept {
   if (!(per_block_rate > 0.0 && per_block_rate < 1.0) || tests < 1 || baseline_blocks < 0 ||
-      baseline_blocks == 1 || baseline_blocks == 2) {
+      baseline_blocks == 1 || baseline_blocks == 2 || window_blocks < 1) {
     return kNaN;
   }
   const double alpha = per_block_rate / tests;  // per-test two-sided tail (Bonferroni)
   const double p = 1.0 - 0.5 * alpha;
   if (baseline_blocks == 0) return InverseNormalCdf(p);
   const double n = baseline_blocks;
-  return std::sqrt(1.0 + std::numbers::pi / (2.0 * n)) *
+  return std::sqrt(1.0 + window_blocks * std::numbers::pi / (2.0 * n)) *
          StudentTQuantile(p, ScaleDegreesOfFreedom(n));
 }
 

@@ -136,7 +136,11 @@ class RobustBaseline {
   // (0.8227 N - 2.5 for Qn, 0.3675 (N + 2) for the MAD); baseline_blocks = 0 means
   // location and scale known exactly (Z = Phi^-1(1 - R/(2K))). NaN for R outside (0, 1),
   // tests < 1 or baseline_blocks in {1, 2} or negative.
-  static double ZForFalseAlarmRate(double per_block_rate, int tests, int baseline_blocks) noexcept;
+  // window_blocks = W > 1: the limit on a sum of W blocks' z divided by sqrt(W). The blocks'
+  // own noise averages out, the baseline median's error does not (every block shares it), so
+  // the factor becomes sqrt(1 + W pi/(2N)). NaN for W < 1.
+  static double ZForFalseAlarmRate(double per_block_rate, int tests, int baseline_blocks,
+                                   int window_blocks = 1) noexcept;
 
   // The indicator value at which indicator i scores z (in the indicator's own units, i.e.
   // exp(...) for log indicators): a threshold to publish next to the raw indicator.

@@ -90,6 +90,10 @@ Status InitialiseState(const MachineContext& m, MachineState& st) {
                                   "< 1 and baseline_blocks >= 3)",
                                   o.false_alarm_rate)};
   }
+  st.window_limit_z = RobustBaseline::ZForFalseAlarmRate(
+      o.false_alarm_rate, static_cast<int>(m.scored_indicator_count), o.baseline_blocks, 2);
+  st.previous_z.assign(m.indicator_count, 0.0);
+  st.previous_scored = false;
   bo.tail_z = o.tail_guard ? o.clear_level * st.limit_z : 0.0;
   auto baseline = RobustBaseline::Create(m.indicator_count, bo);
   if (!baseline) return Error{at + "options.baseline: " + baseline.error()};
@@ -177,6 +181,7 @@ void BlockProcessor::Impl::ResetLearning() noexcept {
   state.indicator_baseline->Reset();
   state.alarm->Reset();
   state.learning = true;
+  state.previous_scored = false;
   state.residual_variance_healthy.Reset();
   state.criterion_healthy.Reset();
   std::fill(state.group_excess_sum.begin(), state.group_excess_sum.end(), 0.0);
@@ -401,6 +406,7 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
     st.alarm->Reset();
   }
   st.learning = s.learning;
+  st.previous_scored = false;  // a restored machine starts a new two-block window
   st.residual_variance_healthy.mean = s.residual_variance_healthy;
   st.residual_variance_healthy.blocks = s.residual_variance_blocks;
   st.criterion_healthy.mean = s.criterion_healthy;

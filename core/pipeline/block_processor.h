@@ -215,14 +215,14 @@ struct BlockConditionIndicators {
   int revolutions = 0;             // revolutions averaged (0: not computed this block)
   std::span<const double> value;   // indicator values (names: ConditionIndicatorNames())
   std::span<const double> z;       // robust z-score of each against the baseline (0 learning)
-  double score = 0.0;              // largest directional z / limit over this set
+  double score = 0.0;              // largest directional two-block z / its limit over this set
 };
 
 // The block's anomaly score and the limits it was judged by.
 struct BlockScore {
   double limit_z = 0.0;        // z limit in force (0 while learning)
   double clear_level = 0.0;    // hysteresis level, in units of the limit
-  double score = 0.0;          // this block's largest indicator z / limit_z
+  double score = 0.0;          // largest indicator z over this and the previous block / limit
   std::string_view indicator;  // which indicator gave it
   std::string_view signal;     // on which signal
   std::string_view shaft;      // at which shaft rate

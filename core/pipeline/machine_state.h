@@ -35,7 +35,13 @@ struct MachineState {
   // The healthy baseline of the whole indicator vector (MachineContext layout); the machine
   // is `learning` until it is complete.
   std::optional<RobustBaseline> indicator_baseline;
-  double limit_z = 0.0;  // z limit for the target false-alarm rate
+  double limit_z = 0.0;         // z limit of one block's z for the target false-alarm rate
+  double window_limit_z = 0.0;  // the same for the two-block score (indicator_scoring_stage.h)
+  // The last scored block's z per indicator, for the two-block score; not part of
+  // the learned state (a restart starts a new window). previous_scored is false after a block
+  // that was not scored (learning, no speed).
+  std::vector<double> previous_z;
+  bool previous_scored = false;
   HealthyMean residual_variance_healthy;             // per condition slot: NA4's reference
   std::optional<HealthyBaseline> envelope_baseline;  // published envelope thresholds
   HealthyMean criterion_healthy;                     // per path: dominant-path criterion

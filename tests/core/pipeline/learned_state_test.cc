@@ -14,8 +14,12 @@ namespace {
 using namespace gearpath::testing;
 
 // Feeds the same `count` simulated blocks to both processors; expects identical judgements.
+// The two-block score's memory of the previous block is not learned state: a resumed machine
+// scores its first block alone (docs/diagnosis.md section 10), so with `first_scored_alone`
+// that block's score may differ while its verdict may not; from the second block on both
+// windows hold the same blocks and the scores agree bit for bit.
 void ExpectSameJudgement(BlockProcessor& a, BlockProcessor& b, GearboxSimulator& sim, int count,
-                         std::uint64_t& sequence) {
+                         std::uint64_t& sequence, bool first_scored_alone = false) {
   AccelBlock block;
   BlockResult ra, rb;
   for (int i = 0; i < count; ++i) {
@@ -25,7 +29,9 @@ void ExpectSameJudgement(BlockProcessor& a, BlockProcessor& b, GearboxSimulator&
     ASSERT_TRUE(b.Process(block.view(), rb).accepted());
     EXPECT_EQ(ra.verdict.state, rb.verdict.state) << "block " << i;
     EXPECT_EQ(ra.verdict.gear_name, rb.verdict.gear_name) << "block " << i;
-    EXPECT_EQ(ra.score.score, rb.score.score) << "block " << i;  // bit for bit
+    if (!(first_scored_alone && i == 0)) {
+      EXPECT_EQ(ra.score.score, rb.score.score) << "block " << i;  // bit for bit
+    }
     EXPECT_EQ(ra.score.exceed_count, rb.score.exceed_count) << "block " << i;
     EXPECT_EQ(ra.score.limit_z, rb.score.limit_z);
     for (std::size_t s = 0; s < ra.shafts.size(); ++s) {
@@ -55,7 +61,7 @@ TEST(LearnedStateTest, AResumedMachineKeepsItsAlarmAndJudgesLikeTheOneThatLearne
   ASSERT_TRUE(resumed->ImportLearnedState(ThroughJson(learned.ExportLearnedState())).ok());
   EXPECT_EQ(resumed->baseline_blocks_learned(), kBaselineBlocks);
   // A fresh processor would learn the fracture as healthy; the resumed one goes on alarming.
-  ExpectSameJudgement(learned, resumed.value(), broken, 3, seq);
+  ExpectSameJudgement(learned, resumed.value(), broken, 3, seq, /*first_scored_alone=*/true);
 }
 
 TEST(LearnedStateTest, ABaselineHalfLearnedIsFinishedWithTheRemainingBlocks) {
