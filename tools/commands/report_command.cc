@@ -33,6 +33,7 @@
 #include "core/dsp/envelope_spectrum.h"
 #include "core/dsp/harmonic_indicator.h"
 #include "core/dsp/kurtogram.h"
+#include "core/dsp/synchronous_average.h"
 #include "core/io/frf_set_io.h"
 #include "core/io/recording.h"
 #include "core/model/gear_train.h"
@@ -40,8 +41,10 @@
 #include "core/pipeline/block_processor.h"
 #include "core/simulation/model_frf_set.h"
 #include "tools/commands/commands.h"
+#include "tools/report/amplitude_spectrum.h"
 #include "tools/report/report_data.h"
 #include "tools/report/report_page.h"
+#include "tools/report/signal_statistics.h"
 
 namespace gearpath::tools {
 namespace {
@@ -207,6 +210,115 @@ Status CheckRedraw(const ReportSes& ses, const BlockShaftIndicator& shaft, bool 
   return Status::Ok();
 }
 
+ReportSignalStatistics StatisticsOf(std::string name, std::string unit,
+                                    std::span<const double> x) {
+  const SignalStatistics st = ComputeSignalStatistics(x);
+  return {std::move(name), std::move(unit), st.rms, st.peak, st.crest_factor, st.kurtosis};
+}
+
+Result<ReportSpectrum> SpectrumOf(std::string title, std::string unit, std::span<const double> x,
+                                  double sample_rate_hz) {
+  auto sp = HannAmplitudeSpectrum(x, sample_rate_hz);
+  if (!sp) return Error{title + ": " + sp.error()};
+  return ReportSpectrum{std::move(title), std::move(unit), sp->bin_hz, std::move(sp->amplitude)};
+}
+
+// The time-domain and spectral pictures of the reported block: statistics of every measured
+// channel, waveforms, the indicator channel's spectrum (mesh zooms), each path's contribution
+// spectrum and their sum, and one synchronous average per distinct shaft rate. `raw` and
+// `reconstructed` are the indicator row's measured and dominant-path signals.
+Status AddSignalPictures(const Recording& rec, std::size_t block, std::size_t row,
+                         int block_channel, const TrainLayout& train, BlockProcessor& proc,
+                         std::span<const double> raw, std::span<const double> reconstructed,
+                         ReportData& d) {
+  const std::size_t n = raw.size();
+  const double fs = rec.layout.sample_rate_hz;
+  const std::string unit = rec.layout.channels[static_cast<std::size_t>(block_channel)].unit;
+  const std::string row_name = d.indicator_channel;
+  std::vector<double> buffer(n);
+  for (std::size_t c = 0; c < rec.layout.channels.size(); ++c) {
+    const ChannelInfo& ch = rec.layout.channels[c];
+    const auto samples = rec.block(block).channel(c);
+    std::transform(samples.begin(), samples.end(), buffer.begin(),
+                   [](float v) { return static_cast<double>(v); });
+    d.statistics.push_back(
+        StatisticsOf(ch.sensor + " " + AxisName(ch.axis), ch.unit, buffer));
+  }
+  const std::string dominant =
+      d.dominant_path >= 0 && static_cast<std::size_t>(d.dominant_path) < d.paths.size()
+          ? d.paths[static_cast<std::size_t>(d.dominant_path)].name
+          : std::string("-");
+  const std::string recon_name =
+      fmt::format("reconstructed ({} contribution at {})", dominant, row_name);
+  d.statistics.push_back(StatisticsOf(recon_name, unit, reconstructed));
+  d.waveforms.push_back({"Measured, " + row_name, unit, fs, {raw.begin(), raw.end()}});
+  d.waveforms.push_back(
+      {"Reconstructed: path " + dominant + "'s contribution at " + row_name, unit, fs,
+       {reconstructed.begin(), reconstructed.end()}});
+
+  // Spectra at the indicator row.
+  auto measured = SpectrumOf("measured " + row_name, unit, raw, fs);
+  if (!measured) return Error{measured.error()};
+  d.measured_spectrum = std::move(measured.value());
+  std::vector<double> sum(n, 0.0);
+  for (std::size_t p = 0; p < d.paths.size(); ++p) {
+    if (!proc.PathSignal(p, row, buffer)) {
+      return Error{fmt::format("no contribution signal for path {} at FRF row {}", p, row)};
+    }
+    for (std::size_t i = 0; i < n; ++i) sum[i] += buffer[i];
+    auto sp = SpectrumOf("path " + d.paths[p].name, unit, buffer, fs);
+    if (!sp) return Error{sp.error()};
+    d.path_spectra.push_back(std::move(sp.value()));
+  }
+  auto summed = SpectrumOf("sum of contributions", unit, sum, fs);
+  if (!summed) return Error{summed.error()};
+  d.contribution_sum = std::move(summed.value());
+
+  // Meshes at this block's shaft rates (d.shafts is in TrainLayout order).
+  for (const TrainMesh& m : train.meshes) {
+    const TrainGear& a = train.gears[static_cast<std::size_t>(m.gear_a)];
+    const TrainGear& b = train.gears[static_cast<std::size_t>(m.gear_b)];
+    const auto sa = static_cast<std::size_t>(a.shaft);
+    const auto sb = static_cast<std::size_t>(b.shaft);
+    if (sa >= d.shafts.size() || sb >= d.shafts.size()) continue;
+    d.meshes.push_back({a.name + "-" + b.name, a.teeth * d.shafts[sa].rate_hz, sa, sb});
+  }
+  d.sideband_orders = proc.setup().options.sideband_orders;
+
+  // Synchronous averages, one per distinct shaft rate (shafts turning at one rate share it).
+  double slowest = 0.0;
+  for (const auto& sh : d.shafts) {
+    if (sh.rate_hz > 0.0 && (slowest == 0.0 || sh.rate_hz < slowest)) slowest = sh.rate_hz;
+  }
+  if (!(slowest > 0.0)) return Status::Ok();
+  std::size_t cap = 4;
+  while (static_cast<double>(cap) < fs / slowest && cap < (1u << 16)) cap *= 2;
+  auto tsa = SynchronousAverage::Create(n, fs, cap);
+  if (!tsa) return Error{"synchronous average: " + tsa.error()};
+  SynchronousAverageRecord rec_raw = tsa->MakeRecord();
+  SynchronousAverageRecord rec_recon = tsa->MakeRecord();
+  for (const auto& sh : d.shafts) {
+    if (!(sh.rate_hz > 0.0)) continue;
+    bool merged = false;
+    for (auto& done : d.synchronous_averages) {
+      if (std::abs(done.shaft_hz - sh.rate_hz) <= 1e-9 * sh.rate_hz) {
+        done.shaft += ", " + sh.name;
+        merged = true;
+      }
+    }
+    if (merged) continue;
+    if (!tsa->Process(raw, sh.rate_hz, rec_raw).ok() ||
+        !tsa->Process(reconstructed, sh.rate_hz, rec_recon).ok()) {
+      continue;  // a block shorter than one revolution: no average to show
+    }
+    d.synchronous_averages.push_back({sh.name, sh.rate_hz,
+                                      static_cast<int>(rec_raw.revolutions),
+                                      {rec_raw.tsa().begin(), rec_raw.tsa().end()},
+                                      {rec_recon.tsa().begin(), rec_recon.tsa().end()}});
+  }
+  return Status::Ok();
+}
+
 int Fail(int code, const std::string& message) {
   std::fprintf(stderr, "gearpath report: %s\n", message.c_str());
   return code;
@@ -299,6 +411,11 @@ int RunReport(const ReportOptions& o) {
       p.dominant_path = std::string(result.dominant_path_name);
       p.state = ToString(result.verdict.state);
       p.gear = std::string(result.verdict.gear_name);
+      p.t0_ns = result.t0_ns;
+      p.speed_hz = result.speed_hz;
+      p.score = result.score.score;
+      p.limit_z = result.score.limit_z;
+      p.clear_level = result.score.clear_level;
       for (const BlockShaftIndicator& sh : result.shafts) {
         p.raw.push_back(sh.raw);
         p.reconstructed.push_back(sh.reconstructed);
@@ -423,6 +540,14 @@ int RunReport(const ReportOptions& o) {
     }
   }
 
+  d.analysis_band_lo_hz = band_lo;
+  d.analysis_band_hi_hz = band_hi;
+  if (auto st = AddSignalPictures(rec, range->last, row, block_channel, train.value(), proc, raw,
+                                  reconstructed, d);
+      !st.ok()) {
+    return Fail(kExitFailure, st.error());
+  }
+
   // Write.
   const std::string html = RenderReportHtml(d);
   std::ofstream out(o.output, std::ios::binary | std::ios::trunc);
@@ -441,8 +566,9 @@ void AddReportCommand(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<ReportOptions>();
   CLI::App* cmd = app.add_subcommand(
       "report",
-      "HTML report of one block or a span of a recording: path bars, kurtograms, "
-      "squared envelope spectra with shaft harmonics, indicator table, verdict");
+      "HTML report of one block or a span of a recording: verdict, statistics, waveform, "
+      "path bars, mesh-frequency zooms, contribution spectra, kurtograms, squared envelope "
+      "spectra, synchronous averages, indicators, trends against UTC time");
   cmd->add_option("--builtin", o->builtin, "built-in machine (FRF set and gear train): table1");
   cmd->add_option("--frf-set", o->frf_set_dir, "FRF set directory (docs/frf_format.md)");
   cmd->add_option("--train", o->train, "gear train of an --frf-set machine (built-in: table1)")

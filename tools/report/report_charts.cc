@@ -8,118 +8,18 @@
 #include <cstddef>
 #include <iterator>
 
+#include "tools/report/svg_primitives.h"
 #include "tools/report/xml_text.h"
 
 namespace gearpath::tools {
-namespace {
-
-constexpr std::array<const char*, 6> kShaftColours = {"#1f77b4", "#ff7f0e", "#2ca02c",
-                                                      "#9467bd", "#8c564b", "#e377c2"};
-
-const char* ShaftColour(std::size_t i) { return kShaftColours[i % kShaftColours.size()]; }
-
-// Plot rectangle inside an SVG of width x height.
-struct Frame {
-  double width = 560.0;
-  double height = 320.0;
-  double left = 70.0;
-  double right = 20.0;
-  double top = 40.0;
-  double bottom = 55.0;
-  double x0() const { return left; }
-  double x1() const { return width - right; }
-  double y0() const { return height - bottom; }  // bottom of the plot area
-  double y1() const { return top; }
-  double pw() const { return x1() - x0(); }
-  double ph() const { return y0() - y1(); }
-};
-
-// Step of about `target` ticks over [0, range]: 1, 2 or 5 times a power of ten.
-double NiceStep(double range, int target = 5) {
-  if (!(range > 0.0) || !std::isfinite(range)) return 1.0;
-  const double raw = range / target;
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  const double norm = raw / mag;
-  const double f = norm < 1.5 ? 1.0 : norm < 3.0 ? 2.0 : norm < 7.0 ? 5.0 : 10.0;
-  return f * mag;
-}
-
-void Open(std::string& s, const Frame& f, const std::string& css_class, const std::string& label) {
-  fmt::format_to(std::back_inserter(s),
-                 "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"{}\" width=\"{:.0f}\" "
-                 "height=\"{:.0f}\" viewBox=\"0 0 {:.0f} {:.0f}\" role=\"img\" "
-                 "aria-label=\"{}\">\n"
-                 "<rect x=\"0\" y=\"0\" width=\"{:.0f}\" height=\"{:.0f}\" fill=\"#ffffff\"/>\n",
-                 css_class, f.width, f.height, f.width, f.height, XmlEscape(label), f.width,
-                 f.height);
-}
-
-void Text(std::string& s, double x, double y, std::string_view text, const char* anchor = "middle",
-          int size = 12, const char* extra = "") {
-  fmt::format_to(
-      std::back_inserter(s),
-      "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" text-anchor=\"{}\"{}>{}</text>\n", x, y,
-      size, anchor, extra, XmlEscape(text));
-}
-
-void Title(std::string& s, const Frame& f, std::string_view title) {
-  Text(s, f.width / 2.0, 20.0, title, "middle", 14, " font-weight=\"bold\"");
-}
-
-// Axis lines, ticks and labels of a linear plot [x_lo, x_hi] x [0, y_hi].
-void Axes(std::string& s, const Frame& f, double x_lo, double x_hi, double y_hi,
-          std::string_view x_label, std::string_view y_label, bool x_ticks = true,
-          double min_x_step = 0.0) {
-  fmt::format_to(std::back_inserter(s),
-                 "<path class=\"axis\" d=\"M{:.1f} {:.1f} V{:.1f} H{:.1f}\" fill=\"none\" "
-                 "stroke=\"#333333\"/>\n",
-                 f.x0(), f.y1(), f.y0(), f.x1());
-  if (x_ticks && x_hi > x_lo) {
-    const double step = std::max(NiceStep(x_hi - x_lo, 8), min_x_step);
-    for (double v = std::ceil(x_lo / step) * step; v <= x_hi + 1e-9 * step; v += step) {
-      const double x = f.x0() + (v - x_lo) / (x_hi - x_lo) * f.pw();
-      fmt::format_to(std::back_inserter(s),
-                     "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" "
-                     "stroke=\"#333333\"/>\n",
-                     x, f.y0(), x, f.y0() + 5.0);
-      Text(s, x, f.y0() + 18.0, DisplayNumber(v, 6), "middle", 11);
-    }
-  }
-  if (y_hi > 0.0) {
-    const double step = NiceStep(y_hi, 5);
-    for (double v = 0.0; v <= y_hi + 1e-9 * step; v += step) {
-      const double y = f.y0() - v / y_hi * f.ph();
-      fmt::format_to(std::back_inserter(s),
-                     "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" "
-                     "stroke=\"#dddddd\"/>\n",
-                     f.x0(), y, f.x1(), y);
-      Text(s, f.x0() - 6.0, y + 4.0, DisplayNumber(v, 4), "end", 11);
-    }
-  }
-  Text(s, f.x0() + f.pw() / 2.0, f.height - 8.0, x_label, "middle", 12);
-  const double yc = f.y1() + f.ph() / 2.0;
-  fmt::format_to(std::back_inserter(s),
-                 "<text x=\"16\" y=\"{:.1f}\" font-size=\"12\" text-anchor=\"middle\" "
-                 "transform=\"rotate(-90 16 {:.1f})\">{}</text>\n",
-                 yc, yc, XmlEscape(y_label));
-}
-
-// Colour of t in [0, 1] on a perceptually ordered dark-blue -> yellow ramp (viridis stops).
-std::string RampColour(double t) {
-  static constexpr std::array<std::array<double, 3>, 5> kStops = {
-      {{68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}}};
-  t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0);
-  const double pos = t * static_cast<double>(kStops.size() - 1);
-  const auto i = std::min(static_cast<std::size_t>(pos), kStops.size() - 2);
-  const double w = pos - static_cast<double>(i);
-  std::array<int, 3> c{};
-  for (std::size_t k = 0; k < 3; ++k) {
-    c[k] = static_cast<int>(std::lround(kStops[i][k] + w * (kStops[i + 1][k] - kStops[i][k])));
-  }
-  return fmt::format("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
-}
-
-}  // namespace
+using svg::Axes;
+using svg::Frame;
+using svg::NiceStep;
+using svg::Open;
+using svg::RampColour;
+using svg::ShaftColour;
+using svg::Text;
+using svg::Title;
 
 std::string PathBarsSvg(const std::vector<ReportPath>& paths, int dominant_path) {
   Frame f;
@@ -128,7 +28,7 @@ std::string PathBarsSvg(const std::vector<ReportPath>& paths, int dominant_path)
   std::string s;
   Open(s, f, "path-bars", "path contribution shares");
   Title(s, f, "Path contributions (share of contribution energy)");
-  Axes(s, f, 0.0, 1.0, 100.0, "transfer path (bearing force)", "share of energy (%)", false);
+  Axes(s, f, 0.0, 1.0, 0.0, 100.0, "transfer path (bearing force)", "share of energy (%)", false);
   const double slot = paths.empty() ? f.pw() : f.pw() / static_cast<double>(paths.size());
   for (std::size_t i = 0; i < paths.size(); ++i) {
     const ReportPath& p = paths[i];
@@ -151,20 +51,15 @@ std::string PathBarsSvg(const std::vector<ReportPath>& paths, int dominant_path)
   return s;
 }
 
-std::string KurtogramSvg(const ReportKurtogram& map) {
+std::string KurtogramSvg(const ReportKurtogram& map, double sk_max) {
   Frame f;
   f.height = 340.0;
   f.right = 90.0;  // room for the colour legend
   std::string s;
   Open(s, f, "kurtogram", map.title);
   Title(s, f, map.title);
-  double k_max = 0.0;
-  for (const auto& row : map.rows) {
-    for (const double v : row) {
-      if (std::isfinite(v)) k_max = std::max(k_max, v);
-    }
-  }
-  const double scale = k_max > 0.0 ? k_max : 1.0;
+  // The scale is the caller's, so maps drawn side by side share one colour per SK value.
+  const double scale = sk_max > 0.0 ? sk_max : 1.0;
   const std::size_t rows = map.rows.size();
   const double rh = rows == 0 ? f.ph() : f.ph() / static_cast<double>(rows);
   const double nyq = map.nyquist_hz > 0.0 ? map.nyquist_hz : 1.0;
@@ -175,9 +70,9 @@ std::string KurtogramSvg(const ReportKurtogram& map) {
     for (std::size_t b = 0; b < row.size(); ++b) {
       fmt::format_to(
           std::back_inserter(s),
-          "<rect class=\"kurtogram-cell\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" "
+          "<rect class=\"kurtogram-cell\" data-sk=\"{}\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" "
           "height=\"{:.2f}\" fill=\"{}\"><title>level {} band {}: SK {}</title></rect>\n",
-          f.x0() + bw * static_cast<double>(b), y, bw + 0.3, rh + 0.3, RampColour(row[b] / scale),
+          ExactNumber(row[b]), f.x0() + bw * static_cast<double>(b), y, bw + 0.3, rh + 0.3, RampColour(row[b] / scale),
           DisplayNumber(map.row_level[r], 2), b, DisplayNumber(row[b], 3));
     }
     Text(s, f.x0() - 6.0, y + rh / 2.0 + 4.0, DisplayNumber(map.row_level[r], 2), "end", 11);
@@ -237,7 +132,8 @@ std::string KurtogramSvg(const ReportKurtogram& map) {
                    lx, f.y0() - sh * (i + 1), sh + 0.3, RampColour(t));
   }
   Text(s, lx + 20.0, f.y0() + 4.0, "0", "start", 11);
-  Text(s, lx + 20.0, f.y1() + 8.0, DisplayNumber(k_max, 3), "start", 11);
+  Text(s, lx + 20.0, f.y1() + 8.0, DisplayNumber(scale, 3), "start", 11,
+       fmt::format(" class=\"sk-scale-max\" data-value=\"{}\"", ExactNumber(scale)));
   Text(s, lx + 8.0, f.y1() - 8.0, "SK", "middle", 11);
   s += "</svg>\n";
   return s;
@@ -256,7 +152,7 @@ std::string SesSvg(const ReportSes& ses, const std::vector<ReportShaft>& shafts,
                    DisplayNumber(ses.band_high_hz)),
        "middle", 11, " fill=\"#555555\"");
   const double ymax = y_max > 0.0 ? y_max : 1.0;
-  Axes(s, f, 0.0, max_hz, ymax, "envelope frequency (Hz)", "SES (normalised)");
+  Axes(s, f, 0.0, max_hz, 0.0, ymax, "envelope frequency (Hz)", "SES (normalised)");
   const auto xof = [&](double hz) { return f.x0() + hz / max_hz * f.pw(); };
   const auto yof = [&](double v) { return f.y0() - std::clamp(v / ymax, 0.0, 1.0) * f.ph(); };
   // The spectrum as stems (one per bin: the resolution of the indicator's reading).
@@ -285,7 +181,7 @@ std::string SesSvg(const ReportSes& ses, const std::vector<ReportShaft>& shafts,
                      "stroke=\"{}\" stroke-dasharray=\"4 3\" stroke-width=\"1.2\"/>\n",
                      XmlEscape(sh.name), h, ExactNumber(hz), x, f.y0(), x, f.y1(), ShaftColour(i));
       Text(s, x, f.y1() - 4.0 - 10.0 * static_cast<double>(i), fmt::format("{}x", h), "middle", 9,
-           fmt::format(" fill=\"{}\"", ShaftColour(i)).c_str());
+           fmt::format(" fill=\"{}\"", ShaftColour(i)));
       fmt::format_to(std::back_inserter(s),
                      "<circle class=\"harmonic-reading\" data-shaft=\"{}\" data-harmonic=\"{}\" "
                      "data-value=\"{}\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3.5\" fill=\"{}\"/>\n",
@@ -304,76 +200,6 @@ std::string SesSvg(const ReportSes& ses, const std::vector<ReportShaft>& shafts,
     Text(s, x + 24.0, y,
          fmt::format("{} shaft {} Hz", shafts[i].name, DisplayNumber(shafts[i].rate_hz)), "start",
          11);
-  }
-  s += "</svg>\n";
-  return s;
-}
-
-std::string TrendSvg(const std::vector<ReportTrendPoint>& trend,
-                     const std::vector<std::string>& shaft_names) {
-  Frame f;
-  f.width = 1140.0;
-  f.right = 200.0;
-  std::string s;
-  Open(s, f, "trend", "indicator trend");
-  Title(s, f, "Indicator trend over the span");
-  if (trend.empty()) {
-    s += "</svg>\n";
-    return s;
-  }
-  const double x_lo = static_cast<double>(trend.front().block_index);
-  double x_hi = static_cast<double>(trend.back().block_index);
-  if (x_hi <= x_lo) x_hi = x_lo + 1.0;
-  double y_hi = 0.0;
-  for (const auto& p : trend) {
-    for (const auto* v : {&p.raw, &p.reconstructed, &p.reconstructed_threshold}) {
-      for (const double x : *v) {
-        if (std::isfinite(x)) y_hi = std::max(y_hi, x);
-      }
-    }
-  }
-  y_hi = y_hi > 0.0 ? 1.1 * y_hi : 1.0;
-  Axes(s, f, x_lo, x_hi, y_hi, "block index in the recording", "indicator", true, 1.0);
-  const auto xof = [&](double b) { return f.x0() + (b - x_lo) / (x_hi - x_lo) * f.pw(); };
-  const auto yof = [&](double v) { return f.y0() - std::clamp(v / y_hi, 0.0, 1.0) * f.ph(); };
-  for (std::size_t sh = 0; sh < shaft_names.size(); ++sh) {
-    // Thresholds are 0 while the baseline is being learned: those points are left out.
-    const auto line = [&](auto member, const char* css, const char* dash, double width,
-                          bool skip_zero) {
-      std::string pts;
-      for (const auto& p : trend) {
-        const auto& v = p.*member;
-        if (sh >= v.size() || (skip_zero && !(v[sh] > 0.0))) continue;
-        fmt::format_to(std::back_inserter(pts), "{:.1f},{:.1f} ",
-                       xof(static_cast<double>(p.block_index)), yof(v[sh]));
-      }
-      if (pts.empty()) return;
-      fmt::format_to(std::back_inserter(s),
-                     "<polyline class=\"{}\" data-shaft=\"{}\" points=\"{}\" fill=\"none\" "
-                     "stroke=\"{}\" stroke-width=\"{}\"{}/>\n",
-                     css, XmlEscape(shaft_names[sh]), pts, ShaftColour(sh), width, dash);
-    };
-    line(&ReportTrendPoint::reconstructed, "trend-reconstructed", "", 2.0, false);
-    line(&ReportTrendPoint::raw, "trend-raw", " stroke-dasharray=\"2 3\"", 1.5, false);
-    line(&ReportTrendPoint::reconstructed_threshold, "trend-threshold", " stroke-dasharray=\"8 4\"",
-         1.0, true);
-    const double y = f.y1() + 14.0 + 44.0 * static_cast<double>(sh);
-    const double lx = f.x1() + 15.0;
-    fmt::format_to(std::back_inserter(s),
-                   "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" "
-                   "stroke-width=\"2\"/>\n",
-                   lx, y - 4.0, lx + 20.0, y - 4.0, ShaftColour(sh));
-    Text(s, lx + 25.0, y, shaft_names[sh] + ": reconstructed", "start", 11);
-    fmt::format_to(std::back_inserter(s),
-                   "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" "
-                   "stroke-dasharray=\"2 3\" stroke-width=\"1.5\"/>\n",
-                   lx, y + 10.0, lx + 20.0, y + 10.0, ShaftColour(sh));
-    Text(s, lx + 25.0, y + 14.0, "raw", "start", 11);
-    fmt::format_to(std::back_inserter(s),
-                   "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" "
-                   "stroke-dasharray=\"8 4\"/>\n",
-                   lx, y + 24.0, lx + 20.0, y + 24.0, ShaftColour(sh));
-    Text(s, lx + 25.0, y + 28.0, "reconstructed threshold", "start", 11);
   }
   s += "</svg>\n";
   return s;

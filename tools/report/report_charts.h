@@ -19,8 +19,9 @@ namespace gearpath::tools {
 std::string PathBarsSvg(const std::vector<ReportPath>& paths, int dominant_path);
 
 // Kurtogram heat map: rows = levels (0 at the top), columns = frequency 0..Nyquist, colour =
-// spectral kurtosis (values below 0 drawn as 0), colour-scale legend, chosen band outlined.
-std::string KurtogramSvg(const ReportKurtogram& map);
+// spectral kurtosis from 0 to `sk_max` (values below 0 drawn as 0, above as sk_max), colour-
+// scale legend, chosen band outlined. Maps shown side by side get the same sk_max.
+std::string KurtogramSvg(const ReportKurtogram& map, double sk_max);
 
 // Squared envelope spectrum from 0 to `max_hz` on a y axis 0..`y_max`, with a dashed vertical
 // marker at each shaft's first five harmonics and a dot at each harmonic amplitude the indicator
@@ -28,9 +29,6 @@ std::string KurtogramSvg(const ReportKurtogram& map);
 std::string SesSvg(const ReportSes& ses, const std::vector<ReportShaft>& shafts, double max_hz,
                    double y_max, bool reconstructed);
 
-// Reconstructed (solid) and raw (dotted) indicator per shaft over the span's blocks, with the
-// reconstructed threshold (dashed) once learned.
-std::string TrendSvg(const std::vector<ReportTrendPoint>& trend,
-                     const std::vector<std::string>& shaft_names);
+// The trends over a span are in trend_charts.h; the signal pictures in signal_charts.h.
 
 }  // namespace gearpath::tools

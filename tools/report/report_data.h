@@ -68,7 +68,55 @@ struct ReportTrendPoint {
   std::string gear;
   std::vector<double> raw;                      // per shaft
   std::vector<double> reconstructed;            // per shaft
-  std::vector<double> reconstructed_threshold;  // per shaft
+  std::vector<double> reconstructed_threshold;  // per shaft (0 while learning: not drawn)
+  std::int64_t t0_ns = 0;  // first sample, ns since the Unix epoch (UTC)
+  double speed_hz = 0.0;   // input-shaft speed used for the block
+  double score = 0.0;      // block score, in units of the limit (BlockScore::score)
+  double limit_z = 0.0;    // 0 while learning: no score bands drawn there
+  double clear_level = 0.0;
+};
+
+// Overall statistics of one time signal (tools/report/signal_statistics.h).
+struct ReportSignalStatistics {
+  std::string signal;  // e.g. "p1 x", or "reconstructed (B1x at p1 x)"
+  std::string unit;    // e.g. "m/s^2"
+  double rms = 0.0;
+  double peak = 0.0;
+  double crest_factor = 0.0;
+  double kurtosis = 0.0;
+};
+
+// A time signal of the block: samples at sample_rate_hz from the block's t0.
+struct ReportWaveform {
+  std::string title;
+  std::string unit;
+  double sample_rate_hz = 0.0;
+  std::vector<double> samples;
+};
+
+// One-sided amplitude spectrum (tools/report/amplitude_spectrum.h): bin k at k * bin_hz.
+struct ReportSpectrum {
+  std::string title;
+  std::string unit;
+  double bin_hz = 0.0;
+  std::vector<double> amplitude;
+};
+
+// One gear mesh at this block's speed; shaft_a / shaft_b index ReportData::shafts.
+struct ReportMesh {
+  std::string name;  // e.g. "G1-G2"
+  double mesh_hz = 0.0;
+  std::size_t shaft_a = 0;  // the driver's shaft
+  std::size_t shaft_b = 0;  // the driven gear's shaft
+};
+
+// One revolution of a shaft's time-synchronous average (core/dsp/synchronous_average.h).
+struct ReportSynchronousAverage {
+  std::string shaft;
+  double shaft_hz = 0.0;
+  int revolutions = 0;
+  std::vector<double> raw;            // measured indicator channel
+  std::vector<double> reconstructed;  // dominant-path contribution at that channel
 };
 
 // Condition indicators of one signal at one shaft rate (BlockConditionIndicators).
@@ -129,6 +177,21 @@ struct ReportData {
   ReportSes ses_raw;
   ReportSes ses_reconstructed;
   std::vector<ReportShaft> shafts;
+
+  // Time-domain view of the block: statistics of every measured channel (and the
+  // reconstructed signal), waveforms of the indicator channel and its reconstruction.
+  std::vector<ReportSignalStatistics> statistics;
+  std::vector<ReportWaveform> waveforms;
+  std::vector<ReportSynchronousAverage> synchronous_averages;
+
+  // Spectra at the indicator channel: measured, each path's contribution, their sum.
+  ReportSpectrum measured_spectrum;
+  std::vector<ReportSpectrum> path_spectra;  // ReportData::paths order
+  ReportSpectrum contribution_sum;
+  double analysis_band_lo_hz = 0.0;
+  double analysis_band_hi_hz = 0.0;
+  std::vector<ReportMesh> meshes;
+  int sideband_orders = 6;  // k = 1..sideband_orders cursors around each mesh frequency
 
   // Condition indicators and the block score (shown once the baseline is learned).
   ReportScore score;

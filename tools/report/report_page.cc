@@ -4,9 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <iterator>
+#include <vector>
 
 #include "tools/report/report_charts.h"
+#include "tools/report/signal_charts.h"
+#include "tools/report/trend_charts.h"
+#include "tools/report/utc_time.h"
 #include "tools/report/xml_text.h"
 
 namespace gearpath::tools {
@@ -22,6 +27,7 @@ table { border-collapse: collapse; font-size: 13px; }
 th, td { border: 1px solid #cccccc; padding: 4px 9px; text-align: right; }
 th { background: #eeeeee; }
 td.name, th.name { text-align: left; }
+td.time { white-space: nowrap; }
 .row { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; }
 svg { border: 1px solid #dddddd; background: #ffffff; }
 .verdict { font-size: 18px; font-weight: bold; padding: 10px 14px; border-radius: 4px; }
@@ -37,6 +43,16 @@ svg { border: 1px solid #dddddd; background: #ffffff; }
 void Cell(std::string& s, double value, int digits = 4, bool over = false) {
   fmt::format_to(std::back_inserter(s), "<td data-value=\"{}\"{}>{}</td>", ExactNumber(value),
                  over ? " class=\"over\"" : "", XmlEscape(DisplayNumber(value, digits)));
+}
+
+// A threshold cell: the value once learned (or configured); while the baseline is being
+// learned there is none, and a 0 would read as a limit everything exceeds.
+void ThresholdCell(std::string& s, double threshold) {
+  if (threshold > 0.0) {
+    Cell(s, threshold);
+  } else {
+    s += "<td class=\"not-learned\">not learned yet</td>";
+  }
 }
 
 void Meta(std::string& s, std::string_view key, std::string_view value) {
@@ -112,6 +128,85 @@ void ConditionSection(std::string& s, const ReportData& d) {
        "docs/condition_indicators.md.</p>\n</section>\n";
 }
 
+// Largest |value| over the signals, for a y axis -m..m shared by the pictures side by side.
+double AbsMax(std::initializer_list<const std::vector<double>*> signals) {
+  double m = 0.0;
+  for (const auto* v : signals) {
+    for (const double x : *v) {
+      if (std::isfinite(x)) m = std::max(m, std::abs(x));
+    }
+  }
+  return m > 0.0 ? 1.05 * m : 1.0;
+}
+
+void StatisticsSection(std::string& s, const ReportData& d) {
+  if (d.statistics.empty()) return;
+  s += "<h2>Overall statistics of the block</h2>\n<section id=\"statistics\">\n"
+       "<table class=\"statistics\">\n<tr><th class=\"name\">signal</th><th "
+       "class=\"name\">unit</th><th>RMS</th><th>peak</th><th>crest factor</th><th>kurtosis</th>"
+       "</tr>\n";
+  for (const ReportSignalStatistics& st : d.statistics) {
+    fmt::format_to(std::back_inserter(s),
+                   "<tr data-statistics=\"{}\"><td class=\"name\">{}</td><td "
+                   "class=\"name\">{}</td>",
+                   XmlEscape(st.signal), XmlEscape(st.signal), XmlEscape(st.unit));
+    Cell(s, st.rms);
+    Cell(s, st.peak);
+    Cell(s, st.crest_factor, 3);
+    Cell(s, st.kurtosis, 3);
+    s += "</tr>\n";
+  }
+  s += "</table>\n<p class=\"note\">About the block mean: RMS, peak = largest |x - mean|, "
+       "crest factor = peak / RMS, kurtosis = mean (x - mean)^4 / RMS^4 (3 for Gaussian noise, "
+       "1.5 for a sine; impacts raise it).</p>\n</section>\n";
+}
+
+void WaveformSection(std::string& s, const ReportData& d) {
+  if (d.waveforms.empty()) return;
+  double y = 0.0;
+  for (const auto& w : d.waveforms) y = std::max(y, AbsMax({&w.samples}));
+  s += "<h2>Time waveform (same scale)</h2>\n<section id=\"waveform\">\n";
+  for (const auto& w : d.waveforms) s += WaveformSvg(w, y);
+  s += "</section>\n";
+}
+
+void SpectraSection(std::string& s, const ReportData& d) {
+  if (!d.meshes.empty() && !d.measured_spectrum.amplitude.empty()) {
+    fmt::format_to(std::back_inserter(s),
+                   "<h2>Spectrum around each mesh frequency (sideband cursors at mesh "
+                   "&#177; k x shaft rate, k = 1..{})</h2>\n<section id=\"mesh-zoom\" "
+                   "class=\"row\">\n",
+                   d.sideband_orders);
+    for (const ReportMesh& m : d.meshes) {
+      s += MeshZoomSvg(d.measured_spectrum, m, d.shafts, d.sideband_orders);
+    }
+    s += "</section>\n<p class=\"note\">Hann-windowed amplitude spectrum of the measured "
+         "indicator channel, amplitude-corrected (a sine on a bin reads its amplitude).</p>\n";
+  }
+  if (!d.path_spectra.empty()) {
+    std::vector<std::string> names;
+    for (const auto& p : d.paths) names.push_back(p.name);
+    s += "<h2>Path contribution spectra and their sum against the measured response</h2>\n"
+         "<section id=\"contribution-spectra\">\n";
+    s += ContributionSpectraSvg(d.measured_spectrum, d.path_spectra, names, d.contribution_sum,
+                                d.analysis_band_lo_hz, d.analysis_band_hi_hz);
+    s += "<p class=\"note\">Contribution of each path = FRF x identified bearing force, at the "
+         "indicator channel, over the analysis band. Where the sum follows the measured "
+         "spectrum, the paths explain the response.</p>\n</section>\n";
+  }
+}
+
+void SynchronousAverageSection(std::string& s, const ReportData& d) {
+  if (d.synchronous_averages.empty()) return;
+  double y = 0.0;
+  for (const auto& t : d.synchronous_averages) y = std::max(y, AbsMax({&t.raw, &t.reconstructed}));
+  const std::string unit = d.waveforms.empty() ? std::string("m/s^2") : d.waveforms.front().unit;
+  s += "<h2>Synchronous averages per shaft (indicator channel, same scale)</h2>\n"
+       "<section id=\"synchronous-averages\" class=\"row\">\n";
+  for (const auto& t : d.synchronous_averages) s += SynchronousAverageSvg(t, unit, y);
+  s += "</section>\n";
+}
+
 std::string StateLabel(const std::string& state) {
   if (state == "no_fault") return "NO FAULT";
   if (state == "suspected") return "SUSPECTED";
@@ -144,8 +239,11 @@ std::string RenderReportHtml(const ReportData& d) {
   Meta(s, "recording", d.recording);
   Meta(s, "FRF set", d.frf_source);
   Meta(s, "block",
-       fmt::format("{} of {} (sequence {}, t0 {} ns)", d.block_index, d.block_count, d.sequence,
-                   d.t0_ns));
+       fmt::format("{} of {} (sequence {})", d.block_index, d.block_count, d.sequence));
+  fmt::format_to(out,
+                 "<tr><th class=\"name\">block start (t0)</th><td class=\"t0\" "
+                 "data-t0-ns=\"{}\">{}</td></tr>\n",
+                 d.t0_ns, XmlEscape(FormatUtc(d.t0_ns)));
   Meta(s, "block shape",
        fmt::format("{} samples at {} Hz", d.samples_per_channel,
                    DisplayNumber(d.sample_rate_hz, 6)));
@@ -182,6 +280,9 @@ std::string RenderReportHtml(const ReportData& d) {
   }
   s += "</section>\n";
 
+  StatisticsSection(s, d);
+  WaveformSection(s, d);
+
   // Paths.
   s += "<h2>Transfer paths</h2>\n<section id=\"paths\" class=\"row\">\n";
   s += PathBarsSvg(d.paths, d.dominant_path);
@@ -200,11 +301,22 @@ std::string RenderReportHtml(const ReportData& d) {
   }
   s += "</table>\n</section>\n";
 
+  SpectraSection(s, d);
+
   // Kurtograms.
   s += "<h2>Kurtograms (spectral kurtosis per band and level)</h2>\n"
        "<section id=\"kurtograms\" class=\"row\">\n";
-  s += KurtogramSvg(d.kurtogram_raw);
-  s += KurtogramSvg(d.kurtogram_reconstructed);
+  // One colour scale for both maps: the same colour is the same spectral kurtosis.
+  double sk_max = 0.0;
+  for (const ReportKurtogram* map : {&d.kurtogram_raw, &d.kurtogram_reconstructed}) {
+    for (const auto& row : map->rows) {
+      for (const double v : row) {
+        if (std::isfinite(v)) sk_max = std::max(sk_max, v);
+      }
+    }
+  }
+  s += KurtogramSvg(d.kurtogram_raw, sk_max);
+  s += KurtogramSvg(d.kurtogram_reconstructed, sk_max);
   s += "</section>\n";
 
   // Squared envelope spectra on a common scale up to 6x the highest shaft rate.
@@ -234,26 +346,31 @@ std::string RenderReportHtml(const ReportData& d) {
                    XmlEscape(sh.name));
     Cell(s, sh.rate_hz, 6);
     Cell(s, sh.raw, 4, sh.raw_threshold > 0.0 && sh.raw > sh.raw_threshold);
-    Cell(s, sh.raw_threshold);
+    ThresholdCell(s, sh.raw_threshold);
     Cell(s, sh.reconstructed, 4,
          sh.reconstructed_threshold > 0.0 && sh.reconstructed > sh.reconstructed_threshold);
-    Cell(s, sh.reconstructed_threshold);
+    ThresholdCell(s, sh.reconstructed_threshold);
     Cell(s, sh.enhancement_percent, 4);
     s += "</tr>\n";
   }
-  s += "</table>\n<p class=\"note\">Thresholds are 0 while the healthy baseline is being "
-       "learned. Red: indicator over its threshold. Enhancement = 100 x reconstructed / raw.</p>\n"
+  s += "</table>\n<p class=\"note\">Thresholds are learned from the healthy baseline (mean + "
+       "4 sigma) or configured; none is shown while the baseline is being learned. Red: "
+       "indicator over its threshold. Enhancement = 100 x reconstructed / raw.</p>\n"
        "</section>\n";
 
+  SynchronousAverageSection(s, d);
   ConditionSection(s, d);
 
   // Trend over the span.
   if (d.trend.size() > 1) {
     std::vector<std::string> names;
     for (const auto& sh : d.shafts) names.push_back(sh.name);
-    s += "<h2>Indicator trend</h2>\n<section id=\"trend\">\n";
+    s += "<h2>Trends over the span (against UTC time, speed overlaid)</h2>\n"
+         "<section id=\"trend\">\n";
+    s += ScoreTrendSvg(d.trend);
     s += TrendSvg(d.trend, names);
-    s += "<table class=\"trend\">\n<tr><th>block</th><th>sequence</th><th class=\"name\">dominant "
+    s += "<table class=\"trend\">\n<tr><th>block</th><th>sequence</th><th class=\"name\">t0 "
+         "(UTC)</th><th>speed (Hz)</th><th class=\"name\">dominant "
          "path</th><th class=\"name\">state</th><th class=\"name\">gear</th>";
     for (const auto& n : names) {
       fmt::format_to(out, "<th>{} raw</th><th>{} reconstructed</th>", XmlEscape(n), XmlEscape(n));
@@ -261,9 +378,11 @@ std::string RenderReportHtml(const ReportData& d) {
     s += "</tr>\n";
     for (const auto& p : d.trend) {
       fmt::format_to(out,
-                     "<tr data-block=\"{}\"><td>{}</td><td>{}</td><td class=\"name\">{}</td>"
+                     "<tr data-block=\"{}\"><td>{}</td><td>{}</td><td class=\"name time\">{}</td>"
+                     "<td>{}</td><td class=\"name\">{}</td>"
                      "<td class=\"name\">{}</td><td class=\"name\">{}</td>",
-                     p.block_index, p.block_index, p.sequence, XmlEscape(p.dominant_path),
+                     p.block_index, p.block_index, p.sequence, XmlEscape(FormatUtc(p.t0_ns)),
+                     XmlEscape(DisplayNumber(p.speed_hz, 5)), XmlEscape(p.dominant_path),
                      XmlEscape(p.state), XmlEscape(p.gear));
       for (std::size_t i = 0; i < names.size(); ++i) {
         Cell(s, i < p.raw.size() ? p.raw[i] : NAN);

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -295,6 +296,78 @@ TEST(ReportCommandTest, ConditionTablesAreTheBlockResultsIndicatorsWithTheLimitI
   }
 }
 
+// RMS, peak, crest factor and kurtosis of a recorded channel, written out here (independent
+// of tools/report/signal_statistics.cc): about the mean, kurtosis not in excess.
+std::vector<double> ChannelStatistics(const Recording& rec, std::size_t block, std::size_t c) {
+  const auto x = rec.block(block).channel(c);
+  double mean = 0.0;
+  for (const float v : x) mean += v;
+  mean /= static_cast<double>(x.size());
+  double m2 = 0.0;
+  double m4 = 0.0;
+  double peak = 0.0;
+  for (const float v : x) {
+    const double d = v - mean;
+    m2 += d * d;
+    m4 += d * d * d * d;
+    peak = std::max(peak, std::abs(d));
+  }
+  m2 /= static_cast<double>(x.size());
+  m4 /= static_cast<double>(x.size());
+  return {std::sqrt(m2), peak, peak / std::sqrt(m2), m4 / (m2 * m2)};
+}
+
+TEST(ReportCommandTest, StatisticsOfEveryChannelAndTheBlockTimeInUtc) {
+  const Fixture& f = Shared();
+  const fs::path out = f.dir / "statistics.html";
+  ASSERT_EQ(RunTool(ReportArgs(f, "--block " + std::to_string(kReportedBlock), out), f.dir).code,
+            0);
+  const std::string html = ReadText(out);
+  auto rec = ReadRecording(f.recording);
+  ASSERT_TRUE(rec.ok()) << rec.error();
+  for (std::size_t c = 0; c < rec->layout.channels.size(); ++c) {
+    const ChannelInfo& ch = rec->layout.channels[c];
+    const std::vector<double> v = RowValues(
+        html, fmt::format("<tr data-statistics=\"{} {}\">", ch.sensor, AxisName(ch.axis)));
+    const std::vector<double> truth = ChannelStatistics(rec.value(), kReportedBlock, c);
+    ASSERT_EQ(v.size(), 4u) << ch.sensor;
+    for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(v[k], truth[k], 1e-9 * truth[k]) << k;
+  }
+  // The faulty blocks continue the healthy ones in time from t0 = 0: block 7 starts at
+  // 7 x 8192 / 8000 s = 7.168 s.
+  EXPECT_NE(html.find(">1970-01-01T00:00:07.168Z<"), std::string::npos);
+}
+
+TEST(ReportCommandTest, MeshZoomsContributionSpectraAndSynchronousAverages) {
+  const Fixture& f = Shared();
+  const fs::path out = f.dir / "signals.html";
+  ASSERT_EQ(RunTool(ReportArgs(f, "--block " + std::to_string(kReportedBlock), out), f.dir).code,
+            0);
+  const std::string html = ReadText(out);
+  const BlockResult& truth = f.results[kReportedBlock];
+  // Table 1: G1 (28 teeth, input) - G2, G3 (34 teeth, intermediate) - G4.
+  ASSERT_EQ(truth.shafts.size(), 3u);
+  const double input = truth.shafts[0].characteristic_hz;
+  const double inter = truth.shafts[1].characteristic_hz;
+  EXPECT_EQ(Count(html, "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"mesh-zoom\""), 2u);
+  EXPECT_EQ(Count(html, fmt::format("class=\"mesh-cursor\" data-hz=\"{}\"", 28 * input)), 1u);
+  EXPECT_EQ(Count(html, fmt::format("class=\"mesh-cursor\" data-hz=\"{}\"", 34 * inter)), 1u);
+  EXPECT_EQ(Count(html, fmt::format("data-shaft=\"input\" data-order=\"-2\" data-hz=\"{}\"",
+                                    28 * input - 2 * input)),
+            1u);
+  // The simulated mesh tone is the largest line near the mesh frequency.
+  const std::string peak_key = "class=\"spectrum-peak\" data-hz=\"";
+  const auto peak = html.find(peak_key);
+  ASSERT_NE(peak, std::string::npos);
+  const double peak_hz = std::strtod(html.c_str() + peak + peak_key.size(), nullptr);
+  EXPECT_NEAR(peak_hz, 28 * input, 1.5 * kFs / kBlock);
+  // One contribution line per path, plus the measured spectrum and the sum.
+  EXPECT_EQ(Count(html, "<path class=\"spectrum-line\""), 2 + truth.paths.size() + 2);
+  // One average per distinct shaft rate (intermediate and output turn at 7 Hz).
+  EXPECT_EQ(Count(html, "class=\"synchronous-average\""), 2u);
+  EXPECT_EQ(Count(html, "<path class=\"waveform\" data-samples=\"8192\""), 2u);
+}
+
 TEST(ReportCommandTest, SpanReportAddsOneTrendRowPerBlock) {
   const Fixture& f = Shared();
   const fs::path out = f.dir / "span.html";
@@ -308,6 +381,10 @@ TEST(ReportCommandTest, SpanReportAddsOneTrendRowPerBlock) {
     EXPECT_EQ(v[1], f.results[static_cast<std::size_t>(b)].shafts[0].reconstructed);
   }
   EXPECT_EQ(Count(html, "<polyline class=\"trend-reconstructed\""), 3u);
+  // Blocks 4 and 5 are still learning (baseline of 6): the bands start at block 6.
+  EXPECT_EQ(Count(html, "<rect class=\"score-band-alarm\" data-from=\"6\" data-to=\"8\""), 1u);
+  EXPECT_EQ(Count(html, "<rect class=\"score-band-alarm\""), 1u);
+  EXPECT_NE(html.find("first block at 1970-01-01T00:00:04.096Z"), std::string::npos);
   if (HavePython()) {
     EXPECT_EQ(ParseXml(out), 0);
   }

@@ -161,12 +161,12 @@ TEST(KurtogramSvgTest, DrawsOneCellPerBandAndOutlinesTheChosenBand) {
   k.significant = true;
   k.low_hz = 4000.0 / 3.0;
   k.high_hz = 8000.0 / 3.0;
-  const std::string svg = KurtogramSvg(k);
+  const std::string svg = KurtogramSvg(k, 5.0);
   EXPECT_EQ(Count(svg, "class=\"kurtogram-cell\""), 6u);
   EXPECT_EQ(Count(svg, "class=\"chosen-band\""), 1u);
   EXPECT_EQ(Count(svg, "stroke-dasharray=\"6 4\""), 0u) << "a significant band is drawn solid";
   k.significant = false;
-  EXPECT_EQ(Count(KurtogramSvg(k), "stroke-dasharray=\"6 4\""), 1u);
+  EXPECT_EQ(Count(KurtogramSvg(k, 5.0), "stroke-dasharray=\"6 4\""), 1u);
 }
 
 TEST(PathBarsSvgTest, BarHeightsAreProportionalToTheShares) {
