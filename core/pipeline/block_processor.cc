@@ -308,6 +308,20 @@ bool BlockProcessor::PathSignal(std::size_t path, std::size_t channel,
   return w.inverse->Process(w.one_spec, out).ok();
 }
 
+bool BlockProcessor::ForceAmplitude(std::size_t path, std::span<double> out) const noexcept {
+  const Impl& im = *impl_;
+  if (im.last_shape == nullptr || path >= im.machine.paths) return false;
+  const BlockWorkspace& w = im.last_shape->work;
+  const auto row = static_cast<Eigen::Index>(path);
+  if (out.size() != w.bins || row >= w.forces.rows()) return false;
+  std::fill(out.begin(), out.end(), 0.0);
+  for (Eigen::Index i = 0; i < w.forces.cols(); ++i) {
+    const std::size_t bin = w.map.first_bin + static_cast<std::size_t>(i);
+    if (bin < out.size()) out[bin] = std::abs(w.forces(row, i));
+  }
+  return true;
+}
+
 int BlockProcessor::baseline_blocks_learned() const noexcept {
   return impl_->state.indicator_baseline->blocks_seen();
 }

@@ -311,6 +311,12 @@ class BlockProcessor {
   // size.
   bool PathSignal(std::size_t path, std::size_t channel, std::span<double> out) noexcept;
 
+  // Amplitude |F| of path `path`'s identified bearing force at every block bin of the last
+  // accepted block (the spectra's amplitude scaling; N for FRFs in (m/s^2)/N), written into
+  // `out` (size samples_per_channel / 2 + 1); 0 at bins outside the FRF range. Read-only,
+  // allocation-free; false on a bad index or size or before the first accepted block.
+  bool ForceAmplitude(std::size_t path, std::span<double> out) const noexcept;
+
   // Healthy baseline: number of blocks learned so far / needed (0 needed when configured).
   int baseline_blocks_learned() const noexcept;
   int baseline_blocks_needed() const noexcept;
