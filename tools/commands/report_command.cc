@@ -270,6 +270,15 @@ Status AddSignalPictures(const Recording& rec, std::size_t block, std::size_t ro
     if (!sp) return Error{sp.error()};
     d.path_spectra.push_back(std::move(sp.value()));
   }
+  // Identified forces: the processor's own spectra (no window: the inverse works on them).
+  std::vector<double> force(n / 2 + 1);
+  for (std::size_t p = 0; p < d.paths.size(); ++p) {
+    if (!proc.ForceAmplitude(p, force)) {
+      return Error{fmt::format("no identified force for path {}", p)};
+    }
+    d.force_spectra.push_back({"force " + d.paths[p].name, "N", fs / static_cast<double>(n),
+                               force});
+  }
   auto summed = SpectrumOf("sum of contributions", unit, sum, fs);
   if (!summed) return Error{summed.error()};
   d.contribution_sum = std::move(summed.value());

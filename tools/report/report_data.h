@@ -188,6 +188,7 @@ struct ReportData {
   ReportSpectrum measured_spectrum;
   std::vector<ReportSpectrum> path_spectra;  // ReportData::paths order
   ReportSpectrum contribution_sum;
+  std::vector<ReportSpectrum> force_spectra;  // identified bearing forces, paths order (N)
   double analysis_band_lo_hz = 0.0;
   double analysis_band_hi_hz = 0.0;
   std::vector<ReportMesh> meshes;

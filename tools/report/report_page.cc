@@ -194,6 +194,27 @@ void SpectraSection(std::string& s, const ReportData& d) {
          "indicator channel, over the analysis band. Where the sum follows the measured "
          "spectrum, the paths explain the response.</p>\n</section>\n";
   }
+  if (!d.force_spectra.empty()) {
+    std::vector<std::string> names;
+    for (const auto& p : d.paths) names.push_back(p.name);
+    s += "<h2>Identified bearing-force spectra</h2>\n<section id=\"force-spectra\">\n";
+    // From half the lowest mesh frequency: the lowest bins of the identified forces are orders
+    // of magnitude above the mesh region (seen on the simulated gearbox) and would flatten it.
+    double lowest_mesh = 0.0;
+    for (const auto& m : d.meshes) {
+      if (m.mesh_hz > 0.0 && (lowest_mesh == 0.0 || m.mesh_hz < lowest_mesh)) {
+        lowest_mesh = m.mesh_hz;
+      }
+    }
+    const double lo = std::max(d.analysis_band_lo_hz, 0.5 * lowest_mesh);
+    s += ForceSpectraSvg(d.force_spectra, names, lo, d.analysis_band_hi_hz);
+    fmt::format_to(std::back_inserter(s),
+                   "<p class=\"note\">Amplitude of each path's bearing force identified from all "
+                   "measured channels (the inverse step), from {} Hz (half the lowest mesh "
+                   "frequency; the bins below are left out of the picture) to the top of the "
+                   "analysis band; zero outside the FRF range.</p>\n</section>\n",
+                   XmlEscape(DisplayNumber(lo, 4)));
+  }
 }
 
 void SynchronousAverageSection(std::string& s, const ReportData& d) {

@@ -239,6 +239,66 @@ std::string ContributionSpectraSvg(const ReportSpectrum& measured,
   return s;
 }
 
+std::string ForceSpectraSvg(const std::vector<ReportSpectrum>& forces,
+                            const std::vector<std::string>& path_names, double lo_hz,
+                            double hi_hz) {
+  Frame f;
+  f.width = 1140.0;
+  f.height = 360.0;
+  f.right = 230.0;  // legend
+  const std::string unit = forces.empty() ? std::string("N") : forces.front().unit;
+  std::string s;
+  Open(s, f, "force-spectra", "identified bearing-force spectra");
+  Title(s, f, "Identified bearing-force spectra (one per path)");
+  if (!(hi_hz > lo_hz)) hi_hz = lo_hz + 1.0;
+  double top = -1e300;
+  for (const auto& sp : forces) {
+    for (std::size_t k = 0; k < sp.amplitude.size(); ++k) {
+      const double hz = static_cast<double>(k) * sp.bin_hz;
+      if (hz >= lo_hz && hz <= hi_hz) top = std::max(top, Db(sp.amplitude[k]));
+    }
+  }
+  const double db_hi = std::ceil((top + 6.0) / 10.0) * 10.0;
+  const double db_lo = db_hi - 100.0;
+  Axes(s, f, lo_hz, hi_hz, db_lo, db_hi, "frequency (Hz)", "force amplitude (dB re 1 " + unit + ")");
+  double ly = f.y1() + 10.0;
+  for (std::size_t p = 0; p < forces.size(); ++p) {
+    const ReportSpectrum& sp = forces[p];
+    const std::string name = p < path_names.size() ? path_names[p] : fmt::format("path {}", p);
+    fmt::format_to(std::back_inserter(s),
+                   "<path class=\"spectrum-line force-line\" data-series=\"{}\" d=\"{}\" "
+                   "stroke=\"{}\" stroke-width=\"1\" fill=\"none\"/>\n",
+                   XmlEscape(name), PeakHoldPath(sp, f, lo_hz, hi_hz, db_lo, db_hi),
+                   ShaftColour(p));
+    std::size_t best = 0;
+    double peak = -1.0;
+    for (std::size_t k = 0; sp.bin_hz > 0.0 && k < sp.amplitude.size(); ++k) {
+      const double hz = static_cast<double>(k) * sp.bin_hz;
+      if (hz >= lo_hz && hz <= hi_hz && sp.amplitude[k] > peak) {
+        peak = sp.amplitude[k];
+        best = k;
+      }
+    }
+    if (peak > 0.0) {
+      const double hz = static_cast<double>(best) * sp.bin_hz;
+      fmt::format_to(std::back_inserter(s),
+                     "<circle class=\"force-peak\" data-path=\"{}\" data-hz=\"{}\" "
+                     "data-value=\"{}\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3\" fill=\"{}\"/>\n",
+                     XmlEscape(name), ExactNumber(hz), ExactNumber(peak),
+                     f.x0() + (hz - lo_hz) / (hi_hz - lo_hz) * f.pw(),
+                     f.y0() - std::clamp((Db(peak) - db_lo) / (db_hi - db_lo), 0.0, 1.0) * f.ph(),
+                     ShaftColour(p));
+      LegendLine(s, f.x1() + 15.0, ly, ShaftColour(p), "",
+                 fmt::format("{}: max {} {} @ {} Hz", name, DisplayNumber(peak, 3), unit,
+                             DisplayNumber(hz, 4)),
+                 1.0);
+      ly += 18.0;
+    }
+  }
+  s += "</svg>\n";
+  return s;
+}
+
 std::string SynchronousAverageSvg(const ReportSynchronousAverage& tsa, const std::string& unit,
                                   double y_abs_max) {
   Frame f;

@@ -33,6 +33,13 @@ std::string ContributionSpectraSvg(const ReportSpectrum& measured,
                                    const std::vector<std::string>& path_names,
                                    const ReportSpectrum& sum, double lo_hz, double hi_hz);
 
+// Each path's identified bearing-force amplitude spectrum (colour per path), dB re 1 unit over
+// [lo_hz, hi_hz], peak hold per pixel column, with circle.force-peak (data-path, data-hz,
+// data-value) on each path's largest bin in the range.
+std::string ForceSpectraSvg(const std::vector<ReportSpectrum>& forces,
+                            const std::vector<std::string>& path_names, double lo_hz,
+                            double hi_hz);
+
 // One revolution of a shaft's synchronous average: measured (black) and reconstructed (blue)
 // against shaft angle (degrees), y axis -y_abs_max..y_abs_max in `unit`.
 std::string SynchronousAverageSvg(const ReportSynchronousAverage& tsa, const std::string& unit,

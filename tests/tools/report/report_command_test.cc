@@ -363,6 +363,16 @@ TEST(ReportCommandTest, MeshZoomsContributionSpectraAndSynchronousAverages) {
   EXPECT_NEAR(peak_hz, 28 * input, 1.5 * kFs / kBlock);
   // One contribution line per path, plus the measured spectrum and the sum.
   EXPECT_EQ(Count(html, "<path class=\"spectrum-line\""), 2 + truth.paths.size() + 2);
+  // One identified force spectrum per path, each with its largest line in the analysis band.
+  EXPECT_EQ(Count(html, "class=\"spectrum-line force-line\""), truth.paths.size());
+  for (const BlockPathShare& p : truth.paths) {
+    const std::string key = fmt::format("class=\"force-peak\" data-path=\"{}\" data-hz=\"", p.name);
+    const auto at = html.find(key);
+    ASSERT_NE(at, std::string::npos) << p.name;
+    const double hz = std::strtod(html.c_str() + at + key.size(), nullptr);
+    EXPECT_GE(hz, truth.analysis_band_lo_hz) << p.name;
+    EXPECT_LE(hz, truth.analysis_band_hi_hz) << p.name;
+  }
   // One average per distinct shaft rate (intermediate and output turn at 7 Hz).
   EXPECT_EQ(Count(html, "class=\"synchronous-average\""), 2u);
   EXPECT_EQ(Count(html, "<path class=\"waveform\" data-samples=\"8192\""), 2u);

@@ -287,5 +287,27 @@ TEST(ContributionSpectraSvgTest, DrawsEveryPathTheirSumAndTheMeasuredSpectrum) {
   EXPECT_EQ(Count(svg, "data-series=\"B2x\""), 1u);
 }
 
+TEST(ForceSpectraSvgTest, MarksEachPathsLargestForceLineAtItsFrequency) {
+  const double fs = 8000.0;
+  const std::size_t n = 8192;
+  auto a = HannAmplitudeSpectrum(Sine(20.0, 300.0, fs, n), fs);
+  auto b = HannAmplitudeSpectrum(Sine(5.0, 1200.0, fs, n), fs);
+  ASSERT_TRUE(a.ok() && b.ok());
+  const std::vector<ReportSpectrum> forces = {{"force B1x", "N", a->bin_hz, a->amplitude},
+                                              {"force B2x", "N", b->bin_hz, b->amplitude}};
+  const std::string svg = ForceSpectraSvg(forces, {"B1x", "B2x"}, 100.0, 2000.0);
+  EXPECT_EQ(Count(svg, "class=\"spectrum-line force-line\""), 2u);
+  EXPECT_NEAR(AttributeAfter(svg, "class=\"force-peak\" data-path=\"B1x\"", "data-hz"), 300.0,
+              a->bin_hz / 2.0);
+  EXPECT_NEAR(AttributeAfter(svg, "class=\"force-peak\" data-path=\"B2x\"", "data-hz"), 1200.0,
+              b->bin_hz / 2.0);
+  EXPECT_NEAR(AttributeAfter(svg, "class=\"force-peak\" data-path=\"B1x\"", "data-value"), 20.0,
+              20.0 * 0.16);
+  EXPECT_NE(svg.find("force amplitude (dB re 1 N)"), std::string::npos);
+  // Outside the range nothing is marked: a line at 300 Hz is not in 500..2000 Hz.
+  const std::string high = ForceSpectraSvg(forces, {"B1x", "B2x"}, 500.0, 2000.0);
+  EXPECT_GE(AttributeAfter(high, "class=\"force-peak\" data-path=\"B1x\"", "data-hz"), 500.0);
+}
+
 }  // namespace
 }  // namespace gearpath::tools
