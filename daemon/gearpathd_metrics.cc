@@ -186,38 +186,32 @@ void IndicatorFamilies(const DaemonMetrics& m, ExpositionWriter& w) {
     w.Sample("gearpath_machine_dominant_path_share",
              {{"machine", x.id}, {"path", l.dominant_path.view()}}, l.dominant_path_share);
   }
-  w.Family("gearpath_machine_envelope_indicator",
-           "The last block's envelope fault indicator per shaft (sum of five SES harmonic "
-           "amplitudes) of the measured (raw) and the dominant-path (reconstructed) signal.",
-           MetricType::kGauge);
-  for (const auto& x : m.machines) {
-    const LatestIndicators& l = x.counters.latest;
-    if (!l.valid) continue;
-    for (std::size_t i = 0; i < l.shaft_count; ++i) {
-      const auto shaft = l.shafts[i].shaft.view();
-      w.Sample("gearpath_machine_envelope_indicator",
-               {{"machine", x.id}, {"shaft", shaft}, {"signal", "raw"}}, l.shafts[i].raw);
-      w.Sample("gearpath_machine_envelope_indicator",
-               {{"machine", x.id}, {"shaft", shaft}, {"signal", "reconstructed"}},
-               l.shafts[i].reconstructed);
+  // The envelope indicators and their thresholds: one series per shaft and signal each.
+  const auto per_shaft = [&](const char* name, const char* help,
+                             double LatestShaftIndicators::*raw,
+                             double LatestShaftIndicators::*reconstructed) {
+    w.Family(name, help, MetricType::kGauge);
+    for (const auto& x : m.machines) {
+      const LatestIndicators& l = x.counters.latest;
+      if (!l.valid) continue;
+      for (std::size_t i = 0; i < l.shaft_count; ++i) {
+        const LatestShaftIndicators& sh = l.shafts[i];
+        w.Sample(name, {{"machine", x.id}, {"shaft", sh.shaft.view()}, {"signal", "raw"}},
+                 sh.*raw);
+        w.Sample(name,
+                 {{"machine", x.id}, {"shaft", sh.shaft.view()}, {"signal", "reconstructed"}},
+                 sh.*reconstructed);
+      }
     }
-  }
-  w.Family("gearpath_machine_envelope_threshold",
-           "The threshold each envelope indicator is judged against (0 while learning).",
-           MetricType::kGauge);
-  for (const auto& x : m.machines) {
-    const LatestIndicators& l = x.counters.latest;
-    if (!l.valid) continue;
-    for (std::size_t i = 0; i < l.shaft_count; ++i) {
-      const auto shaft = l.shafts[i].shaft.view();
-      w.Sample("gearpath_machine_envelope_threshold",
-               {{"machine", x.id}, {"shaft", shaft}, {"signal", "raw"}},
-               l.shafts[i].raw_threshold);
-      w.Sample("gearpath_machine_envelope_threshold",
-               {{"machine", x.id}, {"shaft", shaft}, {"signal", "reconstructed"}},
-               l.shafts[i].reconstructed_threshold);
-    }
-  }
+  };
+  per_shaft("gearpath_machine_envelope_indicator",
+            "The last block's envelope fault indicator per shaft (sum of five SES harmonic "
+            "amplitudes) of the measured (raw) and the dominant-path (reconstructed) signal.",
+            &LatestShaftIndicators::raw, &LatestShaftIndicators::reconstructed);
+  per_shaft("gearpath_machine_envelope_threshold",
+            "The threshold each envelope indicator is judged against (0 while learning).",
+            &LatestShaftIndicators::raw_threshold,
+            &LatestShaftIndicators::reconstructed_threshold);
 }
 
 }  // namespace
