@@ -27,7 +27,8 @@ std::size_t PlanIndex(std::size_t points) noexcept {
 
 Result<SynchronousAverage> SynchronousAverage::Create(std::size_t block_length,
                                                       double sample_rate_hz,
-                                                      std::size_t max_points_per_revolution) {
+                                                      std::size_t max_points_per_revolution,
+                                                      OneStepPlan one_step) {
   const std::string what = std::string(kStage) + ": ";
   // Four samples: the cubic interpolator's stencil.
   if (Status s = dsp_detail::CheckBlockShape(kStage, block_length, 4, sample_rate_hz); !s) {
@@ -43,7 +44,7 @@ Result<SynchronousAverage> SynchronousAverage::Create(std::size_t block_length,
   stage.block_length_ = block_length;
   stage.sample_rate_hz_ = sample_rate_hz;
   stage.max_points_ = max_points_per_revolution;
-  stage.plan_ = stage.MakePlan();
+  if (one_step == OneStepPlan::kOwn) stage.plan_ = stage.MakePlan();
   stage.hann_.resize(max_points_per_revolution);
   for (std::size_t m = 0; m < max_points_per_revolution; ++m) {
     stage.hann_[m] = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(m) /

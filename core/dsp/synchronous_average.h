@@ -87,11 +87,17 @@ struct SynchronousAveragePlan {
 
 class SynchronousAverage {
  public:
+  // Whether the stage keeps a grid of its own for the one-step Process(signal, shaft_hz, ...):
+  // 40 B x 2 N (0.65 MB at N = 8192). A caller that holds its own plans (MakePlan) and uses only
+  // the two-step form passes kNone; the one-step Process() then refuses, as for a foreign plan.
+  enum class OneStepPlan : bool { kNone, kOwn };
+
   // Blocks of `block_length` samples (>= 4) at `sample_rate_hz` (finite, > 0);
   // `max_points_per_revolution` is the cap on M (a power of two, 4..2^20). Plans one r2c and
   // one c2r FFT per power of two from 4 to the cap.
   static Result<SynchronousAverage> Create(std::size_t block_length, double sample_rate_hz,
-                                           std::size_t max_points_per_revolution);
+                                           std::size_t max_points_per_revolution,
+                                           OneStepPlan one_step = OneStepPlan::kOwn);
 
   std::size_t block_length() const noexcept { return block_length_; }
   double sample_rate_hz() const noexcept { return sample_rate_hz_; }
@@ -143,7 +149,7 @@ class SynchronousAverage {
   // forward_[i], inverse_[i]: plans of 4 << i points.
   std::vector<FftPlan> forward_;
   std::vector<FftPlan> inverse_;
-  SynchronousAveragePlan plan_;  // the one-step Process()'s grid
+  SynchronousAveragePlan plan_;  // the one-step Process()'s grid (empty with OneStepPlan::kNone)
   std::vector<double> hann_;     // periodic Hann window of max M points (M = max / s: every s-th)
   std::vector<std::complex<double>> mean_scratch_;  // max M / 2 + 1
 };

@@ -32,7 +32,9 @@ Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWo
   // A whole revolution must fit in the block, so M (>= fs / f) never needs to exceed it.
   const std::size_t max_points =
       std::clamp<std::size_t>(std::bit_ceil(work.n), 4, std::size_t{1} << 16);
-  auto tsa = SynchronousAverage::Create(work.n, fs, max_points);
+  // Every average runs on plans_ (one grid per rate group): the stage needs no grid of its own.
+  auto tsa = SynchronousAverage::Create(work.n, fs, max_points,
+                                        SynchronousAverage::OneStepPlan::kNone);
   if (!tsa) return Error{"synchronous average: " + tsa.error()};
   tsa_.emplace(std::move(tsa.value()));
   auto ind = GearConditionIndicators::Create(max_points);
@@ -41,14 +43,8 @@ Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWo
   record_ = tsa_->MakeRecord();
   plans_.clear();
   for (std::size_t g = 0; g < machine.rate_groups.size(); ++g) plans_.push_back(tsa_->MakePlan());
-  tracked_plans_.clear();
   const AnalysisOptions& o = machine.setup.options;
   const bool localisation_only = o.localisation_tracking && !o.order_tracking;
-  if (localisation_only) {
-    for (std::size_t g = 0; g < machine.rate_groups.size(); ++g) {
-      tracked_plans_.push_back(tsa_->MakePlan());
-    }
-  }
   plan_ok_.assign(machine.rate_groups.size(), 0);
   signal_.assign(work.n, 0.0);
   locked_power_.assign(max_points / 2 + 1, 0.0);
@@ -199,7 +195,11 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
 double ConditionIndicatorStage::MeshCoherence(std::span<const double> signal, double shaft_hz,
                                               double mesh_hz,
                                               std::span<const double> warp) noexcept {
-  if (!tsa_->Process(signal, shaft_hz, record_, warp).ok()) return 0.0;
+  // plans_[0] as scratch: TrackOrders() runs before Process() plans the block's groups.
+  if (plans_.empty() || !tsa_->Plan(shaft_hz, plans_[0], warp).ok() ||
+      !tsa_->Process(signal, plans_[0], record_).ok()) {
+    return 0.0;
+  }
   const auto orders = record_.orders();
   const double teeth = std::round(mesh_hz / shaft_hz);
   double power = 0.0;
@@ -243,12 +243,14 @@ void ConditionIndicatorStage::TrackedLocalisation(StageContext& ctx) noexcept {
   const MachineContext& m = ctx.machine;
   const std::size_t groups = m.rate_groups.size();
   for (std::size_t g = 0; g < groups; ++g) {
-    if (!tsa_->Plan(m.rate_groups[g].ratio * w.speed_hz, tracked_plans_[g], warp_).ok()) continue;
+    // The constant-speed grids of plans_ are used up by now: the tracked ones replace them
+    // (Process() plans every group again next block).
+    if (!tsa_->Plan(m.rate_groups[g].ratio * w.speed_hz, plans_[g], warp_).ok()) continue;
     for (std::size_t c = 0; c < m.channels; ++c) {
       const std::size_t slot = c * groups + g;  // measured signals come first
       if (!w.slot_valid[slot]) continue;
       const std::span<const double> signal = std::span<const double>(w.time).subspan(c * w.n, w.n);
-      if (!tsa_->Process(signal, tracked_plans_[g], record_).ok()) continue;
+      if (!tsa_->Process(signal, plans_[g], record_).ok()) continue;
       w.indicators[m.tracked_offset + slot] = ExclusiveEnergy(g);
       KeepSignatureLines(ctx, c, g);  // overwrites the measured lines (already used)
     }
@@ -345,7 +347,10 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
     }
   }
   Signatures(ctx, /*tracked=*/false);
-  if (tracked && !tracked_plans_.empty()) TrackedLocalisation(ctx);
+  const AnalysisOptions& o = m.setup.options;
+  if (tracked && o.localisation_tracking && !o.order_tracking && !plans_.empty()) {
+    TrackedLocalisation(ctx);
+  }
   return RejectReason::kNone;
 }
 

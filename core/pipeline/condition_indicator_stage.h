@@ -57,10 +57,11 @@ class ConditionIndicatorStage final : public PipelineStage {
   std::optional<GearConditionIndicators> indicators_;
   SynchronousAverageRecord record_;
   // Per rate group: its shaft's angular grid in this block, shared by every signal; plan_ok_
-  // is 0 where Plan() failed (e.g. less than one revolution in the block).
+  // is 0 where Plan() failed (e.g. less than one revolution in the block). The stage's only
+  // grids (0.65 MB each at 8192 samples): the mesh coherence test borrows plans_[0] before the
+  // block's groups are planned, the tracked localisation reuses them after.
   std::vector<SynchronousAveragePlan> plans_;
   std::vector<std::uint8_t> plan_ok_;
-  std::vector<SynchronousAveragePlan> tracked_plans_;  // localisation tracking, per rate group
   ConditionIndicatorValues values_;
   std::vector<double> signal_;  // n: one signal in time
   // Measured channels: each order's locked power and spread between revolutions

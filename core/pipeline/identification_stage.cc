@@ -31,7 +31,6 @@ Status IdentificationStage::Configure(const MachineContext& machine, BlockWorksp
   op_.emplace(std::move(op.value()));
   const auto in_range = static_cast<std::size_t>(work.map.frf.bins());
   x_ = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(machine.channels));
-  figures_.assign(in_range, BinFigures{});
   alpha_.assign(in_range, 0.0);
   condition_.assign(in_range, 0.0);
   return Status::Ok();
@@ -52,7 +51,7 @@ RejectReason IdentificationStage::Process(StageContext& ctx) noexcept {
       x_[static_cast<Eigen::Index>(c)] = w.spec[c * w.bins + k];
       x2 += std::norm(w.spec[c * w.bins + k]);
     }
-    BinFigures& fig = figures_[static_cast<std::size_t>(i)];
+    BinFigures fig;  // read in this bin only: Identify() sets every field
     if (op_->Identify(i, x_, w.forces.col(i), &fig) != IdentifyStatus::kOk) {
       w.forces.col(i).setZero();
       continue;

@@ -23,7 +23,6 @@ class IdentificationStage final : public PipelineStage {
  private:
   std::optional<IdentificationOperator> op_;
   Eigen::VectorXcd x_;               // channels: responses of one bin
-  std::vector<BinFigures> figures_;  // in-range bins
   std::vector<double> alpha_;        // in-range bins (median scratch)
   std::vector<double> condition_;
 };
