@@ -2,24 +2,28 @@
 
 #include <algorithm>
 #include <complex>
+#include <memory>
+#include <utility>
 
 #include "core/diagnosis/dominant_path.h"
 #include "core/pipeline/block_workspace.h"
 #include "core/pipeline/machine_context.h"
+#include "core/pipeline/shared_frf_operators.h"
 
 namespace gearpath {
 
 Status PathEnergyStage::Configure(const MachineContext& m, BlockWorkspace& w) {
   const auto bins = static_cast<std::size_t>(w.map.frf.bins());
-  frf_power_.assign(m.paths * m.channels * bins, 0.0F);
-  for (std::size_t p = 0; p < m.paths; ++p) {
-    for (std::size_t c = 0; c < m.channels; ++c) {
-      float* row = frf_power_.data() + (p * m.channels + c) * bins;
-      for (std::size_t i = 0; i < bins; ++i) {
-        row[i] = static_cast<float>(std::norm(
-            w.map.frf.at[i](static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(p))));
-      }
-    }
+  if (m.setup.shared_frf) {
+    auto power = m.setup.shared_frf->Power(w.n, m.setup.options.sample_rate_hz);
+    if (!power) return Error{power.error()};
+    frf_power_ = std::move(power.value());
+  } else {
+    frf_power_ = std::make_shared<const FrfPowerTable>(FrfPowerTable::Build(w.map));
+  }
+  if (frf_power_->paths != m.paths || frf_power_->channels != m.channels ||
+      frf_power_->bins != bins) {
+    return Error{"the FRF power table does not match the machine's FRF shape"};
   }
   band_force_.assign(bins, 0.0);
   sideband_force_.assign(bins, 0.0);
@@ -52,7 +56,7 @@ RejectReason PathEnergyStage::Process(StageContext& ctx) noexcept {
     double best_e = -1.0;
     int best = 0;
     for (std::size_t c = 0; c < m.channels; ++c) {
-      const float* power = frf_power_.data() + (p * m.channels + c) * bins;
+      const float* power = frf_power_->Row(p, c);
       double channel_energy = 0.0;
       double channel_side = 0.0;
       for (std::size_t i = 0; i < bins; ++i) {

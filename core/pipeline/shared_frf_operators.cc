@@ -77,6 +77,33 @@ Result<IdentificationOperator> SharedFrfOperators::Operator(std::size_t block_le
   return *entry->built;  // a copy shares the per-bin factorisations, not the workspace
 }
 
+Result<std::shared_ptr<const FrfPowerTable>> SharedFrfOperators::Power(std::size_t block_length,
+                                                                       double sample_rate_hz) {
+  PowerEntry* entry = nullptr;
+  {
+    std::lock_guard lock(mutex_);
+    for (PowerEntry& e : powers_) {
+      if (e.block_length == block_length && e.sample_rate_hz == sample_rate_hz) entry = &e;
+    }
+    if (entry == nullptr) {
+      entry = &powers_.emplace_back();
+      entry->block_length = block_length;
+      entry->sample_rate_hz = sample_rate_hz;
+    }
+  }
+  std::call_once(entry->once, [&] {
+    auto map = Mapping(block_length, sample_rate_hz);
+    if (!map) {
+      entry->built.emplace(Error{map.error()});
+      return;
+    }
+    entry->built.emplace(std::make_shared<const FrfPowerTable>(FrfPowerTable::Build(*map)));
+    std::lock_guard lock(mutex_);
+    ++power_tables_built_;
+  });
+  return *entry->built;  // the one table, shared
+}
+
 std::uint64_t SharedFrfOperators::mappings_built() const {
   std::lock_guard lock(mutex_);
   return mappings_built_;
@@ -85,6 +112,11 @@ std::uint64_t SharedFrfOperators::mappings_built() const {
 std::uint64_t SharedFrfOperators::operators_built() const {
   std::lock_guard lock(mutex_);
   return operators_built_;
+}
+
+std::uint64_t SharedFrfOperators::power_tables_built() const {
+  std::lock_guard lock(mutex_);
+  return power_tables_built_;
 }
 
 bool SameFrfMatrix(const FrfMatrix& a, const FrfMatrix& b) noexcept {

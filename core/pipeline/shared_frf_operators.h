@@ -1,5 +1,5 @@
 // SharedFrfOperators: one decoupled FRF matrix and what is precomputed from it per block shape
-// (its grid mapping and its identification operator), built once and shared read-only by every
+// (its grid mapping, its identification operator and its |H|^2 table), built once and shared read-only by every
 // BlockProcessor that is handed it (MachineSetup::shared_frf). A plant with a hundred gearboxes
 // of one type holds one FRF set and one set of per-bin operators instead of a hundred.
 //
@@ -24,6 +24,7 @@
 #include "core/inverse/identification_operator.h"
 #include "core/pipeline/block_processor.h"
 #include "core/pipeline/frf_grid_mapping.h"
+#include "core/pipeline/frf_power_table.h"
 
 namespace gearpath {
 
@@ -43,9 +44,15 @@ class SharedFrfOperators {
   Result<IdentificationOperator> Operator(std::size_t block_length, double sample_rate_hz,
                                           const IdentificationOptions& options);
 
-  // How many grid mappings and operators were built so far (tests: sharing, not rebuilding).
+  // |H|^2 of that mapping (the path-energy stage's table), read-only and shared.
+  Result<std::shared_ptr<const FrfPowerTable>> Power(std::size_t block_length,
+                                                     double sample_rate_hz);
+
+  // How many grid mappings, operators and power tables were built so far (tests: sharing, not
+  // rebuilding).
   std::uint64_t mappings_built() const;
   std::uint64_t operators_built() const;
+  std::uint64_t power_tables_built() const;
 
  private:
   struct MappingEntry {
@@ -61,13 +68,21 @@ class SharedFrfOperators {
     std::once_flag once;
     std::optional<Result<IdentificationOperator>> built;
   };
+  struct PowerEntry {
+    std::size_t block_length = 0;
+    double sample_rate_hz = 0.0;
+    std::once_flag once;
+    std::optional<Result<std::shared_ptr<const FrfPowerTable>>> built;
+  };
 
   std::shared_ptr<const FrfMatrix> decoupled_;
   mutable std::mutex mutex_;  // guards the lists and the counters, never held while building
   std::list<MappingEntry> mappings_;    // list: entries stay put while others are added
   std::list<OperatorEntry> operators_;
+  std::list<PowerEntry> powers_;
   std::uint64_t mappings_built_ = 0;
   std::uint64_t operators_built_ = 0;
+  std::uint64_t power_tables_built_ = 0;
 };
 
 // Same frequencies and same matrices, value for value.
