@@ -1,5 +1,7 @@
 #include "core/pipeline/shared_frf_operators.h"
 
+#include <list>
+#include <mutex>
 #include <utility>
 
 namespace gearpath {
@@ -18,6 +20,31 @@ bool SameOptions(const IdentificationOptions& a, const IdentificationOptions& b)
          ra.noise_rms == rb.noise_rms && ra.discrepancy_factor == rb.discrepancy_factor;
 }
 
+// The entry of `list` that `matches`, added (and set up by `init`) when there is none. The
+// list is guarded by `mutex`; its entries stay put while others are added.
+template <typename Entry, typename Match, typename Init>
+Entry& FindOrAdd(std::mutex& mutex, std::list<Entry>& list, Match matches, Init init) {
+  std::lock_guard lock(mutex);
+  for (Entry& e : list) {
+    if (matches(e)) return e;
+  }
+  Entry& e = list.emplace_back();
+  init(e);
+  return e;
+}
+
+// Builds entry.built once, never under `mutex` (later callers of the entry wait for the first);
+// counts it in `built` when it succeeded.
+template <typename Entry, typename Make>
+void BuildOnce(Entry& entry, std::mutex& mutex, std::uint64_t& built, Make make) {
+  std::call_once(entry.once, [&] {
+    entry.built.emplace(make());
+    if (!entry.built->ok()) return;
+    std::lock_guard lock(mutex);
+    ++built;
+  });
+}
+
 }  // namespace
 
 SharedFrfOperators::SharedFrfOperators(std::shared_ptr<const FrfMatrix> decoupled)
@@ -25,83 +52,60 @@ SharedFrfOperators::SharedFrfOperators(std::shared_ptr<const FrfMatrix> decouple
 
 Result<FrfGridMapping> SharedFrfOperators::Mapping(std::size_t block_length,
                                                    double sample_rate_hz) {
-  MappingEntry* entry = nullptr;
-  {
-    std::lock_guard lock(mutex_);
-    for (MappingEntry& e : mappings_) {
-      if (e.block_length == block_length && e.sample_rate_hz == sample_rate_hz) entry = &e;
-    }
-    if (entry == nullptr) {
-      entry = &mappings_.emplace_back();
-      entry->block_length = block_length;
-      entry->sample_rate_hz = sample_rate_hz;
-    }
-  }
-  std::call_once(entry->once, [&] {
-    entry->built.emplace(MapFrfToBlockGrid(*decoupled_, block_length, sample_rate_hz));
-    std::lock_guard lock(mutex_);
-    ++mappings_built_;
-  });
-  return *entry->built;  // a copy shares the mapped matrices
+  MappingEntry& entry = FindOrAdd(
+      mutex_, mappings_,
+      [&](const MappingEntry& e) {
+        return e.block_length == block_length && e.sample_rate_hz == sample_rate_hz;
+      },
+      [&](MappingEntry& e) {
+        e.block_length = block_length;
+        e.sample_rate_hz = sample_rate_hz;
+      });
+  BuildOnce(entry, mutex_, mappings_built_,
+            [&] { return MapFrfToBlockGrid(*decoupled_, block_length, sample_rate_hz); });
+  return *entry.built;  // a copy shares the mapped matrices
 }
 
 Result<IdentificationOperator> SharedFrfOperators::Operator(std::size_t block_length,
                                                             double sample_rate_hz,
                                                             const IdentificationOptions& options) {
-  OperatorEntry* entry = nullptr;
-  {
-    std::lock_guard lock(mutex_);
-    for (OperatorEntry& e : operators_) {
-      if (e.block_length == block_length && e.sample_rate_hz == sample_rate_hz &&
-          SameOptions(e.options, options)) {
-        entry = &e;
-      }
-    }
-    if (entry == nullptr) {
-      entry = &operators_.emplace_back();
-      entry->block_length = block_length;
-      entry->sample_rate_hz = sample_rate_hz;
-      entry->options = options;
-    }
-  }
-  std::call_once(entry->once, [&] {
+  OperatorEntry& entry = FindOrAdd(
+      mutex_, operators_,
+      [&](const OperatorEntry& e) {
+        return e.block_length == block_length && e.sample_rate_hz == sample_rate_hz &&
+               SameOptions(e.options, options);
+      },
+      [&](OperatorEntry& e) {
+        e.block_length = block_length;
+        e.sample_rate_hz = sample_rate_hz;
+        e.options = options;
+      });
+  BuildOnce(entry, mutex_, operators_built_, [&]() -> Result<IdentificationOperator> {
     auto map = Mapping(block_length, sample_rate_hz);
-    if (!map) {
-      entry->built.emplace(Error{map.error()});
-      return;
-    }
-    entry->built.emplace(IdentificationOperator::Create(*map->in_range, options));
-    std::lock_guard lock(mutex_);
-    ++operators_built_;
+    if (!map) return Error{map.error()};
+    return IdentificationOperator::Create(*map->in_range, options);
   });
-  return *entry->built;  // a copy shares the per-bin factorisations, not the workspace
+  return *entry.built;  // a copy shares the per-bin factorisations, not the workspace
 }
 
 Result<std::shared_ptr<const FrfPowerTable>> SharedFrfOperators::Power(std::size_t block_length,
                                                                        double sample_rate_hz) {
-  PowerEntry* entry = nullptr;
-  {
-    std::lock_guard lock(mutex_);
-    for (PowerEntry& e : powers_) {
-      if (e.block_length == block_length && e.sample_rate_hz == sample_rate_hz) entry = &e;
-    }
-    if (entry == nullptr) {
-      entry = &powers_.emplace_back();
-      entry->block_length = block_length;
-      entry->sample_rate_hz = sample_rate_hz;
-    }
-  }
-  std::call_once(entry->once, [&] {
-    auto map = Mapping(block_length, sample_rate_hz);
-    if (!map) {
-      entry->built.emplace(Error{map.error()});
-      return;
-    }
-    entry->built.emplace(std::make_shared<const FrfPowerTable>(FrfPowerTable::Build(*map)));
-    std::lock_guard lock(mutex_);
-    ++power_tables_built_;
-  });
-  return *entry->built;  // the one table, shared
+  PowerEntry& entry = FindOrAdd(
+      mutex_, powers_,
+      [&](const PowerEntry& e) {
+        return e.block_length == block_length && e.sample_rate_hz == sample_rate_hz;
+      },
+      [&](PowerEntry& e) {
+        e.block_length = block_length;
+        e.sample_rate_hz = sample_rate_hz;
+      });
+  BuildOnce(entry, mutex_, power_tables_built_,
+            [&]() -> Result<std::shared_ptr<const FrfPowerTable>> {
+              auto map = Mapping(block_length, sample_rate_hz);
+              if (!map) return Error{map.error()};
+              return std::make_shared<const FrfPowerTable>(FrfPowerTable::Build(*map));
+            });
+  return *entry.built;  // the one table, shared
 }
 
 std::uint64_t SharedFrfOperators::mappings_built() const {

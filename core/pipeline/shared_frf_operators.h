@@ -1,7 +1,8 @@
 // SharedFrfOperators: one decoupled FRF matrix and what is precomputed from it per block shape
-// (its grid mapping, its identification operator and its |H|^2 table), built once and shared read-only by every
-// BlockProcessor that is handed it (MachineSetup::shared_frf). A plant with a hundred gearboxes
-// of one type holds one FRF set and one set of per-bin operators instead of a hundred.
+// (its grid mapping, its identification operator and its |H|^2 table), built once and shared
+// read-only by every BlockProcessor that is handed it (MachineSetup::shared_frf). A plant with a
+// hundred gearboxes of one type holds one FRF set and one set of per-bin operators instead of a
+// hundred.
 //
 // Entries are keyed by block length, sample rate and identification options: machines that
 // differ in any of them get their own entry, never one another's operators. The first caller of
@@ -48,8 +49,8 @@ class SharedFrfOperators {
   Result<std::shared_ptr<const FrfPowerTable>> Power(std::size_t block_length,
                                                      double sample_rate_hz);
 
-  // How many grid mappings, operators and power tables were built so far (tests: sharing, not
-  // rebuilding).
+  // How many grid mappings, operators and power tables were built (successfully) so far
+  // (tests: sharing, not rebuilding).
   std::uint64_t mappings_built() const;
   std::uint64_t operators_built() const;
   std::uint64_t power_tables_built() const;
