@@ -44,14 +44,14 @@ Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWo
   plans_.clear();
   for (std::size_t g = 0; g < machine.rate_groups.size(); ++g) plans_.push_back(tsa_->MakePlan());
   const AnalysisOptions& o = machine.setup.options;
-  const bool localisation_only = o.localisation_tracking && !o.order_tracking;
+  localisation_only_ = o.localisation_tracking && !o.order_tracking;
   plan_ok_.assign(machine.rate_groups.size(), 0);
   signal_.assign(work.n, 0.0);
   locked_power_.assign(max_points / 2 + 1, 0.0);
   spread_power_.assign(max_points / 2 + 1, 0.0);
   tracker_.reset();
   warp_.clear();
-  if (o.order_tracking || localisation_only) {
+  if (o.order_tracking || localisation_only_) {
     // A block too short to track (under 64 samples) is averaged at constant speed.
     if (auto tracker = OrderTracker::Create(work.n, fs); tracker) {
       tracker_.emplace(std::move(tracker).value());
@@ -347,10 +347,7 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
     }
   }
   Signatures(ctx, /*tracked=*/false);
-  const AnalysisOptions& o = m.setup.options;
-  if (tracked && o.localisation_tracking && !o.order_tracking && !plans_.empty()) {
-    TrackedLocalisation(ctx);
-  }
+  if (tracked && localisation_only_) TrackedLocalisation(ctx);
   return RejectReason::kNone;
 }
 

@@ -62,6 +62,9 @@ class ConditionIndicatorStage final : public PipelineStage {
   // block's groups are planned, the tracked localisation reuses them after.
   std::vector<SynchronousAveragePlan> plans_;
   std::vector<std::uint8_t> plan_ok_;
+  // AnalysisOptions::localisation_tracking without order_tracking: the tracked localisation
+  // re-averages the measured channels on plans_ after the scored averages.
+  bool localisation_only_ = false;
   ConditionIndicatorValues values_;
   std::vector<double> signal_;  // n: one signal in time
   // Measured channels: each order's locked power and spread between revolutions
