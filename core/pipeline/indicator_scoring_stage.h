@@ -10,8 +10,9 @@
 // published, but are too noisy to raise an alarm), taken over the last two scored blocks (the
 // sum of their z over sqrt 2, the previous one clipped) and divided by the limit that keeps a
 // healthy block's chance of any exceedance at AnalysisOptions::false_alarm_rate. Scores are
-// kept per slot and per rate group for the localisation stage. The envelope indicators (seed) are scored alike and also
-// keep their published mean + k sigma thresholds (core/diagnosis/healthy_baseline.h).
+// kept per slot and per rate group for the localisation stage. The envelope indicators (seed)
+// are scored alike and also keep their published mean + k sigma thresholds
+// (core/diagnosis/healthy_baseline.h).
 #pragma once
 
 #include <vector>
