@@ -12,7 +12,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev valgrind
   python3 python3-numpy
   openssl  # tools/make-security-fixtures.sh: the DDS Security tests make their PKI at test time
-  fastddsgen libfastrtps-dev  # tests/interop: the Fast DDS interoperability test (issue 12)
+  fastddsgen default-jre-headless libfastrtps-dev  # tests/interop: Fast DDS interop (fastddsgen runs on Java)
 )
 
 missing=()
