@@ -306,7 +306,9 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
   for (const SignatureSlot& ss : impl->signature_slots) {
     if (!ss.forces) impl->scored_indicator_count += 2;
   }
-  impl->scored_indicator_count += impl->envelope_names.size();
+  // The envelope indicators of the raw signals only (the reconstructed ones are a path
+  // contribution's: published, not scored; indicator_scoring_stage.cc).
+  impl->scored_indicator_count += impl->shaft_ratio.size();
 
   impl->expect.machine_id = id;
   impl->expect.channels = setup.block_channels;

@@ -53,6 +53,9 @@ nlohmann::json BlockLine(const Scenario& sc, int block, const BlockResult& r) {
   line["verdict_shaft"] = std::string(r.verdict.shaft_name);
   line["score"] = r.score.score;
   line["limit_z"] = r.score.limit_z;
+  line["score_indicator"] = std::string(r.score.indicator);
+  line["score_signal"] = std::string(r.score.signal);
+  line["score_shaft"] = std::string(r.score.shaft);
   nlohmann::json& shafts = line["shafts"];
   shafts = nlohmann::json::array();
   for (const BlockShaftIndicator& s : r.shafts) {
