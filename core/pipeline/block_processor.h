@@ -149,7 +149,7 @@ struct AnalysisOptions {
   int clear_blocks = 3;
   // Mesh decision: the best mesh's evidence must exceed the next one's by this factor, else
   // both meshes' gears are reported as candidates.
-  double mesh_separation = 1.5;
+  double mesh_separation = 1.3;
 };
 
 struct MachineSetup {
@@ -241,6 +241,25 @@ struct BlockRegularisation {
   std::uint32_t bins_outside_frf = 0;  // bins with forces set to zero (outside FRF range)
 };
 
+// What the localisation stood on this block (docs/diagnosis.md section 11). Fixed sizes: no
+// allocation per block. Zero while learning or without a speed.
+struct BlockLocalisation {
+  static constexpr std::size_t kMaxGroups = 8;
+  static constexpr std::size_t kMaxMeshes = 4;
+  int group = -1;       // rate group chosen (index into the machine's rate groups)
+  int group_count = 0;  // rate groups of the machine (up to kMaxGroups recorded)
+  // Per rate group: this block's locked exclusive-residual rise over healthy, summed over the
+  // measured channels (units^2), and the value accumulated over the fault's blocks.
+  std::array<double, kMaxGroups> shaft_evidence{};
+  std::array<double, kMaxGroups> shaft_evidence_accumulated{};
+  int mesh_count = 0;  // meshes of the chosen group
+  // Per mesh of the chosen group (its order): the transfer-signature evidence (fractions).
+  std::array<double, kMaxMeshes> mesh_evidence{};
+  // Per rate group and mesh of that group: the transfer signatures' rise over healthy
+  // (units^2): measured channels parallel, orthogonal; identified forces parallel, orthogonal.
+  std::array<std::array<std::array<double, 4>, kMaxMeshes>, kMaxGroups> signature_excess{};
+};
+
 // The names in a BlockResult (paths, bearings, shafts, dominant path) are string_views into
 // the BlockProcessor that filled it (no allocation per block): keep the processor alive as
 // long as the result is read, and copy a name to keep it longer.
@@ -269,6 +288,7 @@ struct BlockResult {
   // Condition indicators: every (signal, rate group), signal-major; and the block's score.
   std::vector<BlockConditionIndicators> condition;
   BlockScore score;
+  BlockLocalisation localisation;
 
   GearVerdict verdict;
   BlockRegularisation regularisation;

@@ -21,40 +21,43 @@ Status LocalisationStage::Configure(const MachineContext& machine, BlockWorkspac
 
 namespace {
 
-// Transfer-signature evidence for each mesh of rate group g (fractions summing to 1; zeros
-// when nothing rose): on the measured channels and on the identified forces, a fault on mesh m
-// adds sideband energy PARALLEL to m's own tone near m's harmonics and energy ORTHOGONAL to the
-// other meshes' tones near theirs. Evidence for m = its parallel excess + the others'
-// orthogonal excess, as a fraction of the total over the group's meshes, averaged over the two
-// sensor arrays (their units differ).
+// Transfer-signature evidence for each mesh of rate group g, from the measured channels
+// (fractions summing to 1; zeros when nothing rose). A tooth fault on mesh m adds sideband
+// energy that travels like m's own tone (through m's transfer): near the OTHER meshes'
+// harmonics that energy does not point along their tones, so it rises in their orthogonal part.
+// Evidence for m = the other meshes' orthogonal rise. Near m's own harmonics the fault's lines are
+// parallel to m's tone, but so are m's healthy eccentricity sidebands, whose block-to-block
+// variation buries the fault's parallel rise: the parallel rise decides only when nothing rose
+// orthogonally anywhere. The identified forces' signatures are published but not used: on the
+// evaluation families they named the mesh less often than the measured channels alone
+// (docs/diagnosis.md section 11).
 std::array<double, kMaxMeshesPerShaft> MeshEvidence(const MachineContext& m,
                                                     const BlockWorkspace& w,
                                                     std::size_t g) noexcept {
   const std::size_t meshes = m.rate_groups[g].meshes.size();
   std::array<double, kMaxMeshesPerShaft> evidence{};
-  int arrays = 0;
-  for (bool forces : {false, true}) {
-    std::array<double, kMaxMeshesPerShaft> par{}, orth{};
-    for (const SignatureSlot& ss : m.signature_slots) {
-      if (ss.group != g || ss.forces != forces) continue;
-      const std::size_t at = forces ? ss.offset : ss.tracked_offset;  // measured: tracked
-      par[ss.mesh] = w.excess[at];
-      orth[ss.mesh] = w.excess[at + 1];
-    }
-    std::array<double, kMaxMeshesPerShaft> e{};
-    double total = 0.0;
-    for (std::size_t i = 0; i < meshes; ++i) {
-      e[i] = par[i];
-      for (std::size_t j = 0; j < meshes; ++j) {
-        if (j != i) e[i] += orth[j] / static_cast<double>(meshes - 1);
-      }
-      total += e[i];
-    }
-    if (!(total > 0.0)) continue;
-    ++arrays;
-    for (std::size_t i = 0; i < meshes; ++i) evidence[i] += e[i] / total;
+  if (meshes < 2) return evidence;
+  std::array<double, kMaxMeshesPerShaft> par{}, orth{};
+  double orth_total = 0.0;
+  for (const SignatureSlot& ss : m.signature_slots) {
+    if (ss.group != g || ss.forces) continue;
+    par[ss.mesh] = w.excess[ss.tracked_offset];
+    orth[ss.mesh] = w.excess[ss.tracked_offset + 1];
+    orth_total += orth[ss.mesh];
   }
-  for (std::size_t i = 0; i < meshes && arrays > 0; ++i) evidence[i] /= arrays;
+  double total = 0.0;
+  for (std::size_t i = 0; i < meshes; ++i) {
+    if (orth_total > 0.0) {
+      for (std::size_t j = 0; j < meshes; ++j) {
+        if (j != i) evidence[i] += orth[j] / static_cast<double>(meshes - 1);
+      }
+    } else {
+      evidence[i] = par[i];
+    }
+    total += evidence[i];
+  }
+  if (!(total > 0.0)) return {};
+  for (std::size_t i = 0; i < meshes; ++i) evidence[i] /= total;
   return evidence;
 }
 
@@ -70,6 +73,8 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
   MachineState& st = ctx.state;
   BlockWorkspace::Localisation& loc = w.localisation;
   loc = {};
+  BlockLocalisation& record = ctx.out.localisation;
+  record = {};
   if (ctx.out.score.limit_z <= 0.0) return RejectReason::kNone;  // not scored (learning)
   const std::size_t groups = m.rate_groups.size();
 
@@ -108,11 +113,30 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
   const RateGroup& rg = m.rate_groups[g];
   loc.group = static_cast<int>(g);
   loc.mesh_count = static_cast<int>(rg.meshes.size());
+  record.group = loc.group;
+  record.group_count = static_cast<int>(groups);
+  for (std::size_t i = 0; i < groups && i < BlockLocalisation::kMaxGroups; ++i) {
+    record.shaft_evidence[i] = group_excess_[i];
+    record.shaft_evidence_accumulated[i] = st.group_excess_sum[i];
+  }
+  for (const SignatureSlot& ss : m.signature_slots) {
+    if (ss.group >= BlockLocalisation::kMaxGroups || ss.mesh >= BlockLocalisation::kMaxMeshes) {
+      continue;
+    }
+    const std::size_t at = ss.forces ? ss.offset : ss.tracked_offset;
+    auto& e = record.signature_excess[ss.group][ss.mesh];
+    e[ss.forces ? 2 : 0] = w.excess[at];
+    e[ss.forces ? 3 : 1] = w.excess[at + 1];
+  }
 
   // 2. The mesh, when the group's gears sit on several: this block's transfer-signature
   // evidence (accumulating it over blocks, like the shaft's, named the right gear less often
   // on the evaluation families: 39 % against 47 %).
   const std::array<double, kMaxMeshesPerShaft> evidence = MeshEvidence(m, w, g);
+  record.mesh_count = static_cast<int>(rg.meshes.size());
+  for (std::size_t i = 0; i < rg.meshes.size() && i < BlockLocalisation::kMaxMeshes; ++i) {
+    record.mesh_evidence[i] = evidence[i];
+  }
   std::uint32_t chosen = 0;  // bit i = rg.meshes[i]
   if (rg.meshes.size() == 1) {
     chosen = 1u;

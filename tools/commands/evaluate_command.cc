@@ -4,6 +4,7 @@
 // (modal_housing) is excluded by default, reported separately when included, and must never
 // be used for tuning.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -56,6 +57,29 @@ nlohmann::json BlockLine(const Scenario& sc, int block, const BlockResult& r) {
   line["score_indicator"] = std::string(r.score.indicator);
   line["score_signal"] = std::string(r.score.signal);
   line["score_shaft"] = std::string(r.score.shaft);
+  const BlockLocalisation& loc = r.localisation;
+  const auto groups = static_cast<std::size_t>(
+      std::min<int>(loc.group_count, static_cast<int>(BlockLocalisation::kMaxGroups)));
+  const auto meshes = static_cast<std::size_t>(
+      std::min<int>(loc.mesh_count, static_cast<int>(BlockLocalisation::kMaxMeshes)));
+  line["localisation"] = {
+      {"group", loc.group},
+      {"shaft_evidence", std::vector<double>(loc.shaft_evidence.begin(),
+                                             loc.shaft_evidence.begin() + groups)},
+      {"shaft_evidence_accumulated",
+       std::vector<double>(loc.shaft_evidence_accumulated.begin(),
+                           loc.shaft_evidence_accumulated.begin() + groups)},
+      {"mesh_evidence",
+       std::vector<double>(loc.mesh_evidence.begin(), loc.mesh_evidence.begin() + meshes)}};
+  nlohmann::json& signatures = line["localisation"]["signature_excess"];
+  signatures = nlohmann::json::array();
+  for (std::size_t g = 0; g < groups; ++g) {
+    nlohmann::json per_mesh = nlohmann::json::array();
+    for (const auto& e : loc.signature_excess[g]) {
+      per_mesh.push_back(std::vector<double>(e.begin(), e.end()));
+    }
+    signatures.push_back(per_mesh);
+  }
   nlohmann::json& shafts = line["shafts"];
   shafts = nlohmann::json::array();
   for (const BlockShaftIndicator& s : r.shafts) {
