@@ -15,6 +15,7 @@
 #include "daemon/dds_bridge.h"
 #include "daemon/dds_setup.h"
 #include "daemon/gearpathd_metrics.h"
+#include "daemon/heap_trim.h"
 #include "daemon/lane_pool.h"
 #include "idl/dds/accel_block_wire.h"
 #include "daemon/machine_id_filter.h"
@@ -279,6 +280,7 @@ struct Gearpathd::Impl {
   Clock::time_point next_throughput{};
   Clock::time_point next_watchdog{};
   Clock::time_point last_summary = Clock::now();
+  HeapTrimmer heap_trimmer;  // freed heap back to the kernel every 30 s (heap_trim.h)
   std::vector<dds::Owned<gearpath_AccelBlock>> samples;
   std::vector<dds::SampleInfo> infos;
   QueuedBlock offered;  // the block being handed to its lane
@@ -551,6 +553,7 @@ void Gearpathd::Impl::Housekeeping(bool force_status) {
     spdlog::info("ignoring blocks of machine \"{}\": not in this daemon's configuration", id);
   }
   if (!primary_id.empty() && now >= next_primary_check) WatchPrimary();
+  heap_trimmer.MaybeTrim(now);
   if (watchdog_period.count() > 0 && now >= next_watchdog) {
     NotifySystemd("WATCHDOG=1");
     next_watchdog = now + watchdog_period / 2;

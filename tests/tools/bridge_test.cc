@@ -316,6 +316,77 @@ TEST_F(Bridge, DirectoryOrderByMtimeTakesTheOlderFileFirst) {
   ExpectFileBlocks(sink.blocks, 1, 2, 100, MtimeNs(dir_ / "export" / "a_second.txt"), 1);
 }
 
+TEST_F(Bridge, DirectoryForgetsFilesNoLongerThereAndTakesALaterFileOfTheSameNameAsNewData) {
+  std::vector<std::string> log;
+  BridgeState state = LoadState();
+  MemorySink sink;
+  DirectoryBridge bridge(DirOptions(), &state, &sink,
+                         [&](const std::string& line) { log.push_back(line); });
+  // An acquisition side that exports and cleans up: 40 files come and go, one at a time. The
+  // state file holds the files that are in the directory, never the history.
+  for (int i = 0; i < 40; ++i) {
+    const fs::path file = dir_ / "export" / ("run_" + std::to_string(100 + i) + ".txt");
+    WriteFile(file, ExportText(i, 100));
+    ASSERT_TRUE(bridge.Poll().ok());
+    ASSERT_EQ(sink.blocks.size(), static_cast<std::size_t>(i + 1));
+    ExpectFileBlocks(sink.blocks, static_cast<std::size_t>(i), i, 100, MtimeNs(file),
+                     static_cast<std::uint64_t>(i));
+    fs::remove(file);
+  }
+  ASSERT_TRUE(bridge.Poll().ok());
+  EXPECT_TRUE(state.files.empty());
+  EXPECT_TRUE(LoadState().files.empty()) << "the state file on disk is pruned too";
+  EXPECT_EQ(state.counters.files_published, 40u);
+  EXPECT_EQ(state.counters.files_failed, 0u);
+  bool said = false;
+  for (const std::string& l : log) {
+    said = said || l.find("1 file(s) no longer in") != std::string::npos;
+  }
+  EXPECT_TRUE(said);
+
+  // A file that stays is published once however often the directory is scanned; a new file
+  // under a forgotten name is new data, published with the next sequence numbers.
+  WriteFile(dir_ / "export" / "keep.txt", ExportText(50, 200));
+  ASSERT_TRUE(bridge.Poll().ok());
+  ASSERT_TRUE(bridge.Poll().ok());
+  ASSERT_EQ(sink.blocks.size(), 42u);
+  const fs::path reused = dir_ / "export" / "run_100.txt";
+  WriteFile(reused, ExportText(60, 300));
+  ASSERT_TRUE(bridge.Poll().ok());
+  ASSERT_EQ(sink.blocks.size(), 45u);
+  ExpectFileBlocks(sink.blocks, 42, 60, 300, MtimeNs(reused), 42);
+  ASSERT_EQ(LoadState().files.size(), 2u);
+}
+
+TEST_F(Bridge, DirectoryCountsAFileRemovedHalfPublishedAsFailed) {
+  WriteFile(dir_ / "export" / "run_a.txt", ExportText(1, 500));  // 5 blocks
+  {
+    BridgeState state = LoadState();
+    MemorySink sink(2);  // the bridge dies after two blocks
+    DirectoryBridge bridge(DirOptions(), &state, &sink);
+    ASSERT_FALSE(bridge.Poll().ok());
+  }
+  ASSERT_EQ(LoadState().files.size(), 1u);
+  EXPECT_EQ(LoadState().files[0].status, FileStatus::kPublishing);
+  fs::remove(dir_ / "export" / "run_a.txt");  // cleaned up while the bridge was down
+  std::vector<std::string> log;
+  BridgeState state = LoadState();
+  MemorySink sink;
+  DirectoryBridge bridge(DirOptions(), &state, &sink,
+                         [&](const std::string& line) { log.push_back(line); });
+  ASSERT_TRUE(bridge.Poll().ok());
+  EXPECT_TRUE(sink.blocks.empty());
+  const BridgeState after = LoadState();
+  EXPECT_TRUE(after.files.empty());
+  EXPECT_EQ(after.counters.files_failed, 1u);
+  EXPECT_EQ(after.next_sequence, 2u);
+  EXPECT_NE(after.last_error.find("run_a.txt: removed after 2 of its 5 blocks were published"),
+            std::string::npos)
+      << after.last_error;
+  ASSERT_FALSE(log.empty());
+  EXPECT_NE(log[0].find("removed after 2 of its 5"), std::string::npos) << log[0];
+}
+
 TEST_F(Bridge, StateFileIsReplacedAtomicallyAndAnUnreadableOneIsRefused) {
   BridgeState s;
   s.machine_id = "gearbox-7";
@@ -440,6 +511,63 @@ TEST_F(StreamBridgeTest, CutsBlocksWithT0AndSequenceAndResumesAfterARestartMidSt
   EXPECT_EQ(state.counters.blocks_published, 10u);
   EXPECT_EQ(state.counters.streams_ended, 1u);
   EXPECT_EQ(state.counters.dropped_samples, 32u);
+}
+
+TEST_F(StreamBridgeTest, ASilentStreamEndsAfterTheIdleTimeoutKeepingTheBlocksBefore) {
+  // A producer that sends a block and a half, then nothing, and never closes (a hung DAQ, a
+  // half-open connection): the stream ends once it has been idle for the timeout.
+  int fds[2];
+  ASSERT_EQ(::socketpair(AF_UNIX, SOCK_STREAM, 0, fds), 0);
+  const std::vector<std::byte> bytes = FloatStream(0, 64 + 32);
+  ASSERT_EQ(::write(fds[1], bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
+  BridgeState state = LoadState();
+  MemorySink sink;
+  StreamBridge bridge({.machine_id = "gearbox-7",
+                       .block_length = 64,
+                       .state_file = state_,
+                       .idle_timeout = std::chrono::milliseconds(300)},
+                      &state, &sink);
+  const auto start = std::chrono::steady_clock::now();
+  Result<StreamOutcome> out = bridge.Run(fds[0]);
+  const auto took = std::chrono::steady_clock::now() - start;
+  ::close(fds[0]);
+  ::close(fds[1]);
+  ASSERT_TRUE(out.ok()) << out.error();
+  EXPECT_EQ(out->stream_error,
+            "no data for 0.3 s (idle timeout): stream ended, 32 frames short of a block not sent");
+  EXPECT_EQ(out->blocks, 1u);
+  EXPECT_GE(took, std::chrono::milliseconds(300));
+  EXPECT_LT(took, std::chrono::seconds(10));
+  ExpectStreamBlocks(sink.blocks, 1);
+  const BridgeState after = LoadState();
+  EXPECT_EQ(after.counters.stream_errors, 1u);
+  EXPECT_EQ(after.counters.streams_ended, 0u);
+  EXPECT_EQ(after.next_sequence, 1u);
+
+  // Data that keeps coming, if slower than the timeout in total, is never cut.
+  ASSERT_EQ(::socketpair(AF_UNIX, SOCK_STREAM, 0, fds), 0);
+  const std::vector<std::byte> slow = FloatStream(64, 2 * 64);
+  std::thread producer([&] {
+    for (std::size_t i = 0; i < slow.size(); i += slow.size() / 4) {
+      const std::size_t n = std::min(slow.size() / 4, slow.size() - i);
+      EXPECT_EQ(::write(fds[1], slow.data() + i, n), static_cast<ssize_t>(n));
+      std::this_thread::sleep_for(std::chrono::milliseconds(150));  // the producer's pace
+    }
+    ::close(fds[1]);
+  });
+  BridgeState state2 = LoadState();
+  MemorySink sink2;
+  StreamBridge bridge2({.machine_id = "gearbox-7",
+                        .block_length = 64,
+                        .state_file = state_,
+                        .idle_timeout = std::chrono::milliseconds(1000)},
+                       &state2, &sink2);
+  Result<StreamOutcome> out2 = bridge2.Run(fds[0]);
+  producer.join();
+  ::close(fds[0]);
+  ASSERT_TRUE(out2.ok()) << out2.error();
+  EXPECT_EQ(out2->stream_error, "");
+  EXPECT_EQ(out2->blocks, 2u);
 }
 
 TEST_F(StreamBridgeTest, CutterGivesTheSameBlocksHoweverTheBytesAreSplit) {
@@ -742,6 +870,42 @@ TEST_F(BridgeCommand, StreamModeOverTcpAndDdsContinuesAfterTheBridgeIsKilled) {
   rec.Signal(SIGINT);  // every block acknowledged: the recorder has them all
   ASSERT_EQ(rec.Wait(std::chrono::seconds(15)), 0) << rec.Err();
   ExpectStreamBlocks(Recorded("rec"), 10);
+}
+
+TEST_F(BridgeCommand, ListenDropsASilentConnectionAfterTheIdleTimeoutAndServesTheNext) {
+  ToolProcess bridge(
+      {"bridge", "--listen", "127.0.0.1:0", "--machine", "gearbox-7", "--state", state_.string(),
+       "--block-length", "64", "--idle-timeout", "0.5", "--domain", Domain()},
+      dir_, "bridge");
+  const int port = ListeningPort(bridge);
+  ASSERT_GT(port, 0) << bridge.Err();
+  // Two clients that connect and say nothing: each is disconnected by the bridge (read gives
+  // end of file), the second one only because the first was let go.
+  for (int client = 1; client <= 2; ++client) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    ASSERT_GE(fd, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_port = htons(static_cast<std::uint16_t>(port));
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+    const auto start = std::chrono::steady_clock::now();
+    timeval limit{30, 0};  // the watchdog of this read
+    ASSERT_EQ(::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &limit, sizeof limit), 0);
+    char byte = 0;
+    EXPECT_EQ(::read(fd, &byte, 1), 0) << "client " << client << ": not closed by the bridge";
+    EXPECT_GE(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(500));
+    ::close(fd);
+  }
+  ASSERT_TRUE(bridge.WaitForStderr("(stream errors so far: 2)", std::chrono::seconds(10)))
+      << bridge.Err();
+  EXPECT_NE(bridge.Err().find("no data for 0.5 s (idle timeout): stream ended before its header "
+                              "was complete"),
+            std::string::npos)
+      << bridge.Err();
+  bridge.Signal(SIGTERM);
+  ASSERT_EQ(bridge.Wait(std::chrono::seconds(10)), 0) << bridge.Err();
+  EXPECT_EQ(LoadState().counters.stream_errors, 2u);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "tools/bridge/directory_bridge.h"
 
 #include <cmath>
+#include <set>
 
 namespace gearpath::tools {
 
@@ -21,6 +22,7 @@ Status DirectoryBridge::Save() { return SaveBridgeState(*state_, options_.state_
 Result<std::size_t> DirectoryBridge::Poll(const std::atomic<bool>* stop) {
   Result<std::vector<ScannedFile>> files = scanner_.Scan();
   if (!files) return Error{files.error()};
+  if (Status st = Forget(*files); !st) return Error{st.error()};
   std::error_code ec;
   const fs::path state_path = fs::weakly_canonical(options_.state_file, ec);
   std::size_t published = 0;
@@ -44,6 +46,37 @@ Result<std::size_t> DirectoryBridge::Poll(const std::atomic<bool>* stop) {
     published += *n;
   }
   return published;
+}
+
+Status DirectoryBridge::Forget(const std::vector<ScannedFile>& present) {
+  std::set<std::string> names;
+  for (const ScannedFile& f : present) names.insert(f.name);
+  std::vector<std::string> forgotten;
+  std::erase_if(state_->files, [&](const BridgeFileRecord& r) {
+    if (names.count(r.name)) return false;
+    if (r.status == FileStatus::kPublishing) {
+      // Gone half published: the rest of it can never go out.
+      const std::string error = (options_.directory / r.name).string() + ": removed after " +
+                                std::to_string(r.blocks_published) + " of its " +
+                                std::to_string(r.blocks_total) +
+                                " blocks were published; the rest is not published";
+      ++state_->counters.files_failed;
+      state_->last_error = error;
+      log_(error);
+    }
+    forgotten.push_back(r.name);
+    return true;
+  });
+  if (forgotten.empty()) return Status::Ok();
+  std::string list;
+  for (std::size_t i = 0; i < forgotten.size() && i < 5; ++i) {
+    list += (i ? ", " : "") + forgotten[i];
+  }
+  if (forgotten.size() > 5) list += ", ...";
+  log_(std::to_string(forgotten.size()) + " file(s) no longer in " + options_.directory.string() +
+       " dropped from the state file (" + list +
+       "); a new file of such a name is new data and will be published");
+  return Save();
 }
 
 Status DirectoryBridge::Fail(BridgeFileRecord& record, const std::string& error) {

@@ -7,7 +7,9 @@
 // continuing the state's, and record every block in the state file as it goes. The first file
 // that is not complete yet stops the pass, so files go out strictly in order. A file that does
 // not parse is recorded as failed with its error (and moved aside if asked): it is not retried
-// unless it changes (size or mtime), so a bad file never loops.
+// unless it changes (size or mtime), so a bad file never loops. A file's record lives as long as
+// the file is in the directory: once it is gone its record is dropped, so the state file does
+// not grow without bound on a directory that the acquisition side cleans up.
 #pragma once
 
 #include <atomic>
@@ -51,6 +53,10 @@ class DirectoryBridge {
  private:
   // Reads, then publishes the rest of one file. Returns blocks published, or a sink/state error.
   Result<std::size_t> PublishFile(const ScannedFile& file, const std::atomic<bool>* stop);
+  // Drops the records of files no longer in the directory (deleted, moved away, or moved to
+  // the failed directory), so that the state file stays as long as the directory's listing; a
+  // file removed half published is counted as failed. Saves the state if anything was dropped.
+  Status Forget(const std::vector<ScannedFile>& present);
   Status Fail(BridgeFileRecord& record, const std::string& error);
   Status Save();
 

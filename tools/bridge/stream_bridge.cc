@@ -3,7 +3,9 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -38,14 +40,33 @@ Result<StreamOutcome> StreamBridge::Run(int fd, const std::atomic<bool>* stop) {
   std::vector<std::byte> buffer(1 << 16);
   Status stream = Status::Ok();
   bool stopped = false;
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point last_data = Clock::now();
   for (;;) {
     if (stop && stop->load()) {
       stopped = true;
       break;
     }
     // poll with a short timeout, so a signal's stop flag is seen on a quiet stream.
+    int wait_ms = 200;
+    if (options_.idle_timeout.count() > 0) {
+      const auto idle = Clock::now() - last_data;
+      if (idle >= options_.idle_timeout) {
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%g",
+                      std::chrono::duration<double>(options_.idle_timeout).count());
+        stream = Error{std::string("no data for ") + seconds + " s (idle timeout): stream ended" +
+                       (cutter.header() ? ", " + std::to_string(cutter.dropped_samples()) +
+                                              " frames short of a block not sent"
+                                        : std::string(" before its header was complete"))};
+        break;
+      }
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(options_.idle_timeout - idle);
+      wait_ms = static_cast<int>(std::clamp<long long>(left.count() + 1, 1, 200));
+    }
     pollfd p{fd, POLLIN, 0};
-    const int ready = ::poll(&p, 1, 200);
+    const int ready = ::poll(&p, 1, wait_ms);
     if (ready < 0 && errno == EINTR) continue;
     if (ready == 0) continue;
     const ssize_t n = ready < 0 ? -1 : ::read(fd, buffer.data(), buffer.size());
@@ -55,6 +76,7 @@ Result<StreamOutcome> StreamBridge::Run(int fd, const std::atomic<bool>* stop) {
       break;
     }
     if (n == 0) break;  // end of stream
+    last_data = Clock::now();
     stream = cutter.Feed(std::span<const std::byte>(buffer.data(), static_cast<std::size_t>(n)),
                          on_block);
     if (!stream) break;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -21,6 +22,10 @@ struct StreamBridgeOptions {
   std::uint32_t block_length = 4096;
   std::filesystem::path state_file;
   std::function<std::int64_t()> now_ns{};  // t0 for streams whose header says 0; empty: clock
+  // A stream that delivers no byte for this long is ended as a stream error (the connection is
+  // then closed by the caller, so that a silent TCP client cannot hold the one connection slot
+  // forever); zero: wait for data indefinitely (stdin, FIFOs, files).
+  std::chrono::milliseconds idle_timeout{0};
 };
 
 struct StreamOutcome {

@@ -54,6 +54,7 @@ struct BridgeOptions {
   DdsOptions dds;
   int subscribers = 1;
   double wait_s = 60.0;
+  double idle_timeout_s = 60.0;
   bool quiet = false;
 };
 
@@ -133,10 +134,17 @@ int RunDirectory(const BridgeOptions& opt, BridgeState& state, BlockSink& sink) 
 }
 
 int RunStreams(const BridgeOptions& opt, BridgeState& state, BlockSink& sink) {
+  // A TCP client that stops sending is dropped after --idle-timeout: one connection is served
+  // at a time, so a silent one would otherwise lock out every producer. stdin, FIFOs and files
+  // are waited for indefinitely.
+  const bool tcp = opt.stream.empty();
   StreamBridge bridge({.machine_id = opt.machine,
                        .block_length = opt.block_length,
                        .state_file = opt.state_file,
-                       .now_ns = {}},
+                       .now_ns = {},
+                       .idle_timeout = tcp ? std::chrono::milliseconds(
+                                                 static_cast<long long>(opt.idle_timeout_s * 1000))
+                                           : std::chrono::milliseconds(0)},
                       &state, &sink);
   std::uint64_t sent = 0;
   auto finish = [&](int code) {
@@ -323,6 +331,11 @@ void AddBridgeCommand(CLI::App& app, int& exit_code) {
       ->check(Positive());
   cmd->add_option("--shaft-speed", opt->shaft_speed_hz,
                   "Directory mode: input-shaft speed in Hz to send with every block")
+      ->check(NonNegative());
+  cmd->add_option("--idle-timeout", opt->idle_timeout_s,
+                  "--listen: seconds without data after which a connection is closed (counted "
+                  "as a stream error) so that the next producer can connect; 0 = never")
+      ->capture_default_str()
       ->check(NonNegative());
   cmd->add_flag("--once", opt->once, "One directory scan, or one TCP connection, then exit");
   cmd->add_option("--topic", opt->topic, "Block topic name (default gearpath/AccelBlock)");

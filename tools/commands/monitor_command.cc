@@ -239,18 +239,32 @@ struct MachineView {
 
 // What the monitor knows of one daemon: its latest Status and when Statuses arrive. A daemon
 // that dies publishes nothing more, so its silence is the only sign: it is declared silent
-// after 3 of its status periods (measured between arrivals), at least 2 s. A daemon first
-// heard of through MachineHealth (its first Status may arrive later, or never if it dies at
-// once) is timed from that sample.
+// once no Status has arrived for 1.5 of its status periods (at least one period plus 0.25 s, so
+// that a Status a little late on a loaded host is not taken for a death), so that a killed
+// daemon is reported within two periods (issue 12). The period is the daemon's own: the
+// interval between the timestamps of its consecutive Statuses (the median of the last five, so
+// one late Status does not move it), 1 s (the daemon's default) until two have arrived. A
+// daemon first heard of through MachineHealth (its first Status may arrive later, or never if
+// it dies at once) is timed from that sample.
 struct DaemonView {
   json status;
   std::map<std::string, json> health;  // latest MachineHealth per machine id (terminal)
   std::string health_state;            // daemon_state of its latest MachineHealth
   Clock::time_point last_seen{};
-  double period_s = 1.0;
-  bool silent = false;  // reported silent, not heard since
+  std::int64_t last_timestamp_ns = 0;  // of its latest Status
+  std::vector<double> intervals_s;     // the last five intervals between its Status timestamps
+  bool silent = false;                 // reported silent, not heard since
 
-  double SilentAfter() const { return std::max(2.0, 3.0 * period_s); }
+  double PeriodS() const {
+    if (intervals_s.empty()) return 1.0;
+    std::vector<double> sorted = intervals_s;
+    std::sort(sorted.begin(), sorted.end());
+    return sorted[sorted.size() / 2];
+  }
+  double SilentAfter() const {
+    const double p = PeriodS();
+    return std::max(1.5 * p, p + 0.25);
+  }
   // The state it last said: on its Status, else on its MachineHealth.
   std::string LastState() const {
     return status.is_object() ? status["state"].get<std::string>() : health_state;
@@ -259,11 +273,16 @@ struct DaemonView {
     if (last_seen == Clock::time_point{}) last_seen = now;
     health_state = std::move(daemon_state);
   }
-  void Heard(json j, Clock::time_point now) {
-    if (last_seen != Clock::time_point{}) {
-      const double gap = std::chrono::duration<double>(now - last_seen).count();
-      period_s = 0.8 * period_s + 0.2 * std::clamp(gap, 0.05, 600.0);
+  void Heard(json j, std::int64_t timestamp_ns, Clock::time_point now) {
+    // A restarted daemon's clock, or a sample out of order, gives no interval.
+    if (last_timestamp_ns > 0 && timestamp_ns > last_timestamp_ns) {
+      const double interval = static_cast<double>(timestamp_ns - last_timestamp_ns) * 1e-9;
+      if (interval <= 600.0) {
+        intervals_s.push_back(interval);
+        if (intervals_s.size() > 5) intervals_s.erase(intervals_s.begin());
+      }
     }
+    last_timestamp_ns = timestamp_ns;
     last_seen = now;
     status = std::move(j);
     silent = false;
@@ -520,6 +539,15 @@ int RunMonitor(const MonitorOptions& opt) {
   std::vector<dds_attach_t> triggered(8);
   for (;;) {
     std::chrono::nanoseconds wait = std::chrono::milliseconds(500);
+    // Awake when a daemon's silence becomes due, not up to half a second later.
+    const auto now = Clock::now();
+    for (const auto& [id, d] : daemons) {
+      if (d.last_seen == Clock::time_point{} || d.silent) continue;
+      const auto due = d.last_seen + std::chrono::duration_cast<Clock::duration>(
+                                         std::chrono::duration<double>(d.SilentAfter()));
+      wait = std::clamp(std::chrono::duration_cast<std::chrono::nanoseconds>(due - now),
+                        std::chrono::nanoseconds(std::chrono::milliseconds(1)), wait);
+    }
     if (opt.timeout_s > 0) {
       const auto left = start + std::chrono::duration<double>(opt.timeout_s) -
                         std::chrono::steady_clock::now();
@@ -557,7 +585,7 @@ int RunMonitor(const MonitorOptions& opt) {
     ok = ok && drain(status, [&](const auto& s) {
       if (!opt.status) return;
       json j = ToJson(s);
-      daemons[std::string(GetString(s.daemon_id))].Heard(j, Clock::now());
+      daemons[std::string(GetString(s.daemon_id))].Heard(j, s.timestamp_ns, Clock::now());
       emit(std::move(j), "", nullptr);
     });
     // MachineHealth: kept per daemon for the table (drawn once per round, not per sample:
