@@ -4,27 +4,8 @@
 
 #include <cmath>
 #include <complex>
-#include <numbers>
-
-#include "core/simulation/deterministic_rng.h"
 
 namespace gearpath {
-namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr std::uint64_t kSourceStream = 201;         // unmodelled sources, fixed per run
-constexpr std::uint64_t kNoiseStreamBase = 1 << 20;  // + block index
-constexpr std::uint64_t kBurstStreamBase = 1 << 21;  // + block index
-// Irrational multiples of the pump rate for the three tones.
-const double kToneMultiples[] = {7.0 * std::numbers::sqrt2, 13.0 * std::numbers::sqrt3,
-                                 9.0 * std::numbers::pi};
-constexpr double kToneModulation = 0.3;
-
-double UniformIn(DeterministicRng& rng, double lo, double hi) {
-  return lo + (hi - lo) * rng.Uniform();
-}
-
-}  // namespace
 
 Result<PlantSimulator> PlantSimulator::Create(std::shared_ptr<const PlantDynamics> dynamics,
                                               std::vector<ChannelInfo> channels,
@@ -108,19 +89,20 @@ Result<PlantSimulator> PlantSimulator::Create(std::shared_ptr<const PlantDynamic
   sim.te_spectrum_.resize(bins, sim.excitation_.stage_count());
 
   const Eigen::Index nc = static_cast<Eigen::Index>(sim.channels_.size());
-  DeterministicRng rng(c.seed, kSourceStream);
-  sim.pump_hz_ = UniformIn(rng, 17.0, 31.0);
-  sim.tone_gain_.resize(nc, 3);
-  for (double m : kToneMultiples) {
-    sim.tone_hz_.push_back(m * sim.pump_hz_);
-    sim.tone_phase_.push_back(kTwoPi * rng.Uniform());
-  }
-  for (Eigen::Index ch = 0; ch < nc; ++ch) {
-    for (Eigen::Index k = 0; k < 3; ++k) sim.tone_gain_(ch, k) = UniformIn(rng, 0.3, 1.0);
-  }
-  sim.burst_gain_.resize(nc);
-  for (Eigen::Index ch = 0; ch < nc; ++ch) sim.burst_gain_[ch] = UniformIn(rng, 0.3, 1.0);
-  sim.drift_phase_ = kTwoPi * rng.Uniform();
+  DisturbanceConfig dc;
+  dc.sample_rate_hz = c.sample_rate_hz;
+  dc.noise_relative = c.noise_relative;
+  dc.tones = c.tones;
+  dc.bursts = c.bursts;
+  dc.tone_level = c.tone_level;
+  dc.burst_level = c.burst_level;
+  dc.burst_rate_hz = c.burst_rate_hz;
+  dc.seed = c.seed;
+  sim.disturbances_ = MeasurementDisturbances(dc, nc);
+  sim.speed_.mean_hz = c.input_speed_hz;
+  sim.speed_.drift_relative = c.speed_drift ? c.drift_relative : 0.0;
+  sim.speed_.period_s = static_cast<double>(c.block_length) / c.sample_rate_hz;
+  sim.speed_.phase = sim.disturbances_.drift_phase();
 
   Eigen::MatrixXd first;
   sim.NoiseFree(0, false, first);
@@ -133,14 +115,7 @@ Result<PlantSimulator> PlantSimulator::Create(std::shared_ptr<const PlantDynamic
 }
 
 double PlantSimulator::InputRevs(double sample) const noexcept {
-  const double t = sample / config_.sample_rate_hz;
-  const double f0 = config_.input_speed_hz;
-  if (!config_.speed_drift || config_.drift_relative == 0.0) return f0 * t;
-  const double period = static_cast<double>(config_.block_length) / config_.sample_rate_hz;
-  const double a = config_.drift_relative;
-  // Integral of f0 (1 + a sin(2 pi t / T + phase)) from 0 to t.
-  return f0 * t - f0 * a * period / kTwoPi *
-                      (std::cos(kTwoPi * t / period + drift_phase_) - std::cos(drift_phase_));
+  return speed_.Revs(sample / config_.sample_rate_hz);
 }
 
 void PlantSimulator::NoiseFree(std::int64_t first_sample, bool fault_on, Eigen::MatrixXd& out) {
@@ -197,56 +172,11 @@ void PlantSimulator::NoiseFree(std::int64_t first_sample, bool fault_on, Eigen::
   }
 }
 
-void PlantSimulator::AddUnmodelled(std::int64_t first_sample, Eigen::MatrixXd& signal) const {
-  const double fs = config_.sample_rate_hz;
-  const Eigen::Index b = signal.rows();
-  const Eigen::Index nc = signal.cols();
-  if (config_.tones && config_.tone_level > 0.0) {
-    for (Eigen::Index i = 0; i < b; ++i) {
-      const double t = static_cast<double>(first_sample + i) / fs;
-      const double pump_cycles = pump_hz_ * t;
-      const double am =
-          1.0 + kToneModulation * std::cos(kTwoPi * (pump_cycles - std::floor(pump_cycles)));
-      for (std::size_t k = 0; k < tone_hz_.size(); ++k) {
-        const double cycles = tone_hz_[k] * t;
-        const double v = am * std::cos(kTwoPi * (cycles - std::floor(cycles)) + tone_phase_[k]);
-        for (Eigen::Index ch = 0; ch < nc; ++ch) {
-          signal(i, ch) += config_.tone_level * reference_rms_[ch] *
-                           tone_gain_(ch, static_cast<Eigen::Index>(k)) * v;
-        }
-      }
-    }
-  }
-  if (config_.bursts && config_.burst_level > 0.0 && config_.burst_rate_hz > 0.0) {
-    DeterministicRng rng(config_.seed, kBurstStreamBase + blocks_);
-    const double duration = static_cast<double>(b) / fs;
-    double t = 0.0;
-    for (;;) {
-      t += -std::log(1.0 - rng.Uniform()) / config_.burst_rate_hz;
-      if (t >= duration) break;
-      const double f = UniformIn(rng, 400.0, 3500.0);
-      const double tau = UniformIn(rng, 2e-3, 8e-3);
-      const double peak = config_.burst_level * UniformIn(rng, 0.5, 1.5);
-      const double phase = kTwoPi * rng.Uniform();
-      const auto i0 = static_cast<Eigen::Index>(std::ceil(t * fs));
-      const auto i1 = std::min(b, i0 + static_cast<Eigen::Index>(std::ceil(10.0 * tau * fs)));
-      for (Eigen::Index i = i0; i < i1; ++i) {
-        const double dt = static_cast<double>(i) / fs - t;
-        const double v = peak * std::exp(-dt / tau) * std::sin(kTwoPi * f * dt + phase);
-        for (Eigen::Index ch = 0; ch < nc; ++ch) {
-          signal(i, ch) += reference_rms_[ch] * burst_gain_[ch] * v;
-        }
-      }
-    }
-  }
-}
-
 void PlantSimulator::NextBlock(bool fault_on, AccelBlock& block) {
   const std::uint32_t len = config_.block_length;
   const std::int64_t first = static_cast<std::int64_t>(blocks_) * len;
   NoiseFree(first, fault_on, scratch_);
-  AddUnmodelled(first, scratch_);
-  const std::size_t nc = channels_.size();
+  disturbances_.AddUnmodelled(first, blocks_, reference_rms_, scratch_);
   block.machine_id = config_.machine_id;
   block.sequence = config_.first_sequence + blocks_;
   block.t0_ns = config_.start_time_ns +
@@ -256,17 +186,7 @@ void PlantSimulator::NextBlock(bool fault_on, AccelBlock& block) {
   block.speed_source = SpeedSource::kAcquisition;
   block.channels = channels_;
   block.samples_per_channel = len;
-  block.samples.resize(nc * len);
-  DeterministicRng noise(config_.seed, kNoiseStreamBase + blocks_);
-  for (std::size_t ch = 0; ch < nc; ++ch) {
-    const double sigma = config_.noise_relative * reference_rms_[static_cast<Eigen::Index>(ch)];
-    float* dst = block.samples.data() + ch * len;
-    for (std::uint32_t i = 0; i < len; ++i) {
-      double v = scratch_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(ch));
-      if (sigma > 0.0) v += sigma * noise.Gaussian();
-      dst[i] = static_cast<float>(v);
-    }
-  }
+  disturbances_.WriteWithNoise(blocks_, reference_rms_, scratch_, block.samples);
   ++blocks_;
 }
 

@@ -17,19 +17,9 @@
 //     makes the convolution circular: the wrap-around transient sits at the start of the segment,
 //     and only the last B samples are kept; this is exact as long as the plant's impulse response
 //     dies out within S - B samples (modes above ~50 Hz with >= 1 % damping do, at S - B = 1 s).
-//  3. Noise: white Gaussian, std = noise_relative x the channel's reference RMS (the RMS of
-//     the noise-free HEALTHY first block, fixed for the whole run, so a fault does not change
-//     the noise level).
-//  4. Unmodelled sources (optional), each with random but fixed per-channel gains:
-//     - tones: a pump / fan at its own rate f_p in [17, 31] Hz, not tied to any shaft, with
-//       3 tones at f_p x {7 sqrt 2, 13 sqrt 3, 9 pi} (irrational multiples), amplitude
-//       tone_level x reference RMS each, amplitude-modulated at f_p (depth 0.3);
-//     - bursts: broadband decaying bursts (exp(-t / tau) sin(2 pi f t), f in [400, 3500] Hz,
-//       tau in [2, 8] ms, peak burst_level x reference RMS) at Poisson times of rate
-//       burst_rate_hz, drawn per block from (seed, block index): not tied to any shaft.
-//  5. Speed drift (optional): speed(t) = f_0 (1 + drift sin(2 pi t / T_b + phase)), T_b the
-//     block duration, so every block's mean speed is f_0 (the speed the block reports) while
-//     the speed moves by +/- drift within it.
+//  3. Noise, unmodelled sources (pump tones, bursts) and the speed drift: MeasurementDisturbances
+//     (measurement_disturbances.h), shared with the time-domain ParametricPlantSimulator. The
+//     reference RMS of the noise and the sources is the noise-free HEALTHY first block's.
 // Deterministic: same dynamics, excitation and config -> bit-identical blocks.
 // Channels are named by the plant (e.g. "p1".."p3", "m1", axis x, as GearboxSimulator does).
 #pragma once
@@ -44,6 +34,7 @@
 #include "core/common/frf_matrix.h"
 #include "core/common/result.h"
 #include "core/dsp/fft_plan.h"
+#include "core/evaluation/measurement_disturbances.h"
 #include "core/evaluation/plant_excitation.h"
 
 namespace gearpath {
@@ -106,7 +97,6 @@ class PlantSimulator {
 
  private:
   explicit PlantSimulator(PlantExcitation excitation) : excitation_(std::move(excitation)) {}
-  void AddUnmodelled(std::int64_t first_sample, Eigen::MatrixXd& signal) const;
 
   PlantSimulatorConfig config_;
   PlantExcitation excitation_;
@@ -117,12 +107,8 @@ class PlantSimulator {
   std::unique_ptr<FftPlan> forward_, forward_fault_, backward_;
   Eigen::MatrixXcd te_spectrum_;  // bins x stages
   Eigen::VectorXd reference_rms_;
-  // Unmodelled sources, fixed per run.
-  double pump_hz_ = 0.0;
-  std::vector<double> tone_hz_, tone_phase_;
-  Eigen::MatrixXd tone_gain_;   // channels x tones
-  Eigen::VectorXd burst_gain_;  // per channel
-  double drift_phase_ = 0.0;
+  MeasurementDisturbances disturbances_;  // noise and unmodelled sources, fixed per run
+  SpeedProfile speed_;
   std::uint64_t blocks_ = 0;
   Eigen::MatrixXd scratch_;
 };
