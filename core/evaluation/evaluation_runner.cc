@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "core/evaluation/plant_family.h"
-#include "core/evaluation/plant_simulator.h"
+#include "core/evaluation/plant_stream.h"
 #include "core/frf/identity_frf_set.h"
 #include "core/pipeline/block_processor.h"
 
@@ -35,48 +35,6 @@ int MeshOf(const TrainLayout& layout, int gear) {
   return -1;
 }
 
-// Signed raw RMS change of the channel whose RMS changes most, faulty vs healthy.
-double MaxRmsChange(PlantSimulator& sim, std::int64_t first_sample) {
-  Eigen::MatrixXd healthy, faulty;
-  sim.NoiseFree(first_sample, false, healthy);
-  sim.NoiseFree(first_sample, true, faulty);
-  double best = 0.0;
-  for (Eigen::Index c = 0; c < healthy.cols(); ++c) {
-    const double h = healthy.col(c).norm();
-    if (h <= 0.0) continue;
-    const double change = faulty.col(c).norm() / h - 1.0;
-    if (std::abs(change) > std::abs(best)) best = change;
-  }
-  return best;
-}
-
-// Every fault model is linear in its depths (TE_f = (1 - s d w) TE_h + s p), and so is the
-// plant: with all depths scaled by s the faulty block is H + s G, G = F(1) - H. The smallest
-// s > 0 at which some channel's RMS reaches (1 +/- target) x its healthy RMS solves, per
-// channel, |G|^2 s^2 + 2 <H, G> s + |H|^2 (1 - (1 +/- target)^2) = 0. 0 = no such s.
-double SeverityScaleForRmsChange(PlantSimulator& sim, std::int64_t first_sample, double target) {
-  Eigen::MatrixXd healthy, faulty;
-  sim.NoiseFree(first_sample, false, healthy);
-  sim.NoiseFree(first_sample, true, faulty);
-  double best = 0.0;
-  for (Eigen::Index c = 0; c < healthy.cols(); ++c) {
-    const Eigen::VectorXd g = faulty.col(c) - healthy.col(c);
-    const double a = g.squaredNorm();
-    const double b = 2.0 * healthy.col(c).dot(g);
-    const double hh = healthy.col(c).squaredNorm();
-    if (a <= 0.0 || hh <= 0.0) continue;
-    for (double level : {1.0 + target, 1.0 - target}) {
-      const double cc = hh * (1.0 - level * level);
-      const double disc = b * b - 4.0 * a * cc;
-      if (disc < 0.0) continue;
-      for (double root : {(-b + std::sqrt(disc)) / (2.0 * a), (-b - std::sqrt(disc)) / (2.0 * a)}) {
-        if (root > 0.0 && (best == 0.0 || root < best)) best = root;
-      }
-    }
-  }
-  return best;
-}
-
 // The identity FRF set for the plant's channels: a seat channel (one per bearing, in bearing
 // order, as the plant families make them) near its bearing's gears, any other near every gear.
 Result<FrfSet> IdentityFrfFor(const Plant& plant) {
@@ -95,41 +53,18 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   outcome.scenario = sc;
   Result<Plant> plant = MakePlant({sc.family, sc.variant, sc.channels, sc.seed});
   if (!plant) return Error{plant.error()};
-  PlantExcitationConfig ex;
-  ex.fault = sc.fault;
-  ex.faulty_gear = sc.gear;
-  ex.seed = sc.seed;
-  Result<PlantExcitation> excitation = PlantExcitation::Create(plant->train, ex);
-  if (!excitation) return Error{excitation.error()};
-  PlantSimulatorConfig sim_config;
-  sim_config.machine_id = fmt::format("eval-{}", sc.index);
-  sim_config.sample_rate_hz = options.sample_rate_hz;
-  sim_config.block_length = options.block_length;
-  sim_config.input_speed_hz = sc.input_rpm / 60.0;
-  sim_config.noise_relative = sc.noise;
-  sim_config.tones = sc.unmodelled;
-  sim_config.bursts = sc.unmodelled;
-  sim_config.speed_drift = sc.unmodelled;
-  sim_config.seed = sc.seed;
-  Result<PlantSimulator> sim = PlantSimulator::Create(plant->dynamics, plant->channels,
-                                                      std::move(excitation).value(), sim_config);
-  if (!sim) return Error{sim.error()};
-  if (sc.fault != PlantFaultKind::kNone && options.target_rms_change > 0.0) {
-    const std::int64_t first =
-        static_cast<std::int64_t>(options.baseline_blocks) * options.block_length;
-    const double scale = SeverityScaleForRmsChange(*sim, first, options.target_rms_change);
-    if (scale > 0.0) {
-      sim->ScaleFaultSeverity(scale);
-      outcome.severity_scale = scale;
-    }
-    outcome.rms_change = MaxRmsChange(*sim, first);
-  }
-  outcome.severity = sim->excitation().severity();
+  PlantStreamConfig stream_config;
+  stream_config.machine_id = fmt::format("eval-{}", sc.index);
+  stream_config.sample_rate_hz = options.sample_rate_hz;
+  stream_config.block_length = options.block_length;
+  Result<std::unique_ptr<PlantStream>> stream = MakePlantStream(*plant, sc, stream_config);
+  if (!stream) return Error{stream.error()};
+  PlantStream& source = **stream;
   Result<TrainLayout> layout = TrainLayoutFromGearTrain(plant->train);
   if (!layout) return Error{"train layout: " + layout.error()};
 
   MachineSetup setup;
-  setup.machine_id = sim_config.machine_id;
+  setup.machine_id = stream_config.machine_id;
   if (options.identity_frf) {
     Result<FrfSet> identity = IdentityFrfFor(*plant);
     if (!identity) return Error{"identity FRF set: " + identity.error()};
@@ -152,7 +87,14 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   const int total = options.baseline_blocks + options.evaluation_blocks;
   for (int b = 0; b < total; ++b) {
     const bool evaluation = b >= options.baseline_blocks;
-    sim->NextBlock(evaluation && sc.fault != PlantFaultKind::kNone, block);
+    const bool faulty = evaluation && sc.fault != PlantFaultKind::kNone;
+    if (faulty && b == options.baseline_blocks && options.target_rms_change > 0.0) {
+      // Severity normalised on the first evaluation block, at the stream's position.
+      const SeverityFit fit = source.NormaliseSeverity(options.target_rms_change);
+      outcome.severity_scale = fit.scale;
+      outcome.rms_change = fit.rms_change;
+    }
+    source.NextBlock(faulty, block);
     const ProcessOutcome po = processor->Process(block.view(), result);
     if (!po.accepted()) {
       return Error{fmt::format("block {} rejected: {}", b, po.message.view())};
@@ -166,6 +108,7 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
     rec.shaft = std::string(result.verdict.shaft_name);
     outcome.verdicts.push_back(std::move(rec));
   }
+  outcome.severity = source.severity();
   outcome.score = ScoreVerdicts(outcome.verdicts, sc.gear, *layout);
   return outcome;
 }

@@ -4,17 +4,19 @@
 // A scenario's machine: MachineSetup{machine id, the plant's MODEL FRF set (or the identity set,
 // RunnerOptions::identity_frf), the train layout
 // (TrainLayoutFromGearTrain), DEFAULT AnalysisOptions except sample_rate_hz = 8 kHz}; blocks
-// of 8192 samples carry the (mean) input speed. The plant simulator streams kBaselineBlocks
-// (20) healthy blocks, which the processor learns its baseline from, then kEvaluationBlocks
-// (5) evaluation blocks (faulty, or still healthy for fault kind none) of the same machine,
-// continuing in time and sequence. Every verdict is recorded.
+// of 8192 samples carry the (mean) input speed. The plant's stream (PlantStream, plant_stream.h:
+// the frequency-domain PlantSimulator or the time-domain ParametricPlantSimulator) delivers
+// kBaselineBlocks (20) healthy blocks, which the processor learns its baseline from, then
+// kEvaluationBlocks (5) evaluation blocks (faulty, or still healthy for fault kind none) of the
+// same machine, continuing in time and sequence. Every verdict is recorded.
 //
-// Fault severity is normalised per scenario: the fault depths (PlantFaultSeverity) are scaled
-// by one common factor so that the raw RMS change of the most affected channel (noise-free,
-// first evaluation block, faulty vs healthy) is target_rms_change (3 %; solved exactly, every
-// fault model being linear in its depths), each depth clamped to its physical cap.
-// A fault is then a modest change everywhere, whatever the plant's sensitivity; a smooth
-// wear_dip usually hits its cap first and stays well under the target (it is meant to be hard).
+// Fault severity is normalised per scenario, at the first evaluation block: the fault depths
+// (PlantFaultSeverity) are scaled by one common factor so that the raw RMS change of the most
+// affected channel (noise-free, that block, faulty vs healthy) is target_rms_change (3 %;
+// solved exactly for the linear families, by secant steps for the time-domain one), each depth
+// clamped to its physical cap. A fault is then a modest change everywhere, whatever the plant's
+// sensitivity; a smooth wear_dip usually hits its cap first and stays well under the target
+// (it is meant to be hard).
 //
 // Scoring (ScoreVerdicts), over the evaluation blocks only:
 //  - alarmed block: state is neither no_fault nor learning (suspected or alarm);

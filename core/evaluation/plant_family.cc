@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "core/evaluation/parametric_plate_plant.h"
 #include "core/simulation/deterministic_rng.h"
 #include "core/simulation/model_frf_set.h"
 
@@ -106,6 +107,19 @@ Result<Plant> MakeModalPlant(const PlantSpec& spec, const GearTrain& train) {
   return plant;
 }
 
+Result<Plant> MakeParametricPlatePlant(const PlantSpec& spec, const GearTrain& train) {
+  const bool housing = spec.channels == ChannelSet::kSeatsAndHousing;
+  Result<ParametricPlatePlant> truth = DrawParametricPlatePlant(train, housing, spec.seed);
+  if (!truth) return Error{truth.error()};
+  Plant plant;
+  plant.spec = spec;
+  plant.train = train;
+  plant.channels = ChannelsFor(static_cast<int>(train.bearings.size()), housing);
+  plant.model_frf = ParametricPlateFrfSet(*truth, train, plant.channels, EvaluationFrfGrid());
+  plant.parametric = std::make_shared<const ParametricPlatePlant>(std::move(truth).value());
+  return plant;
+}
+
 }  // namespace
 
 std::string_view PlantFamilyName(PlantFamily family) noexcept {
@@ -116,6 +130,8 @@ std::string_view PlantFamilyName(PlantFamily family) noexcept {
       return "lumped_torsional";
     case PlantFamily::kModalHousing:
       return "modal_housing";
+    case PlantFamily::kParametricPlate:
+      return "parametric_plate";
   }
   return "unknown";
 }
@@ -296,6 +312,7 @@ Result<FrfMatrix> ModalHousingDynamics::TeTransfer(const Eigen::VectorXd& freque
 Result<Plant> MakePlant(const PlantSpec& spec) {
   const GearTrain train = MakeTrain(spec.variant);
   if (spec.family == PlantFamily::kModalHousing) return MakeModalPlant(spec, train);
+  if (spec.family == PlantFamily::kParametricPlate) return MakeParametricPlatePlant(spec, train);
   return MakeLumpedPlant(spec, train);
 }
 

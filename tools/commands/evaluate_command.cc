@@ -1,8 +1,8 @@
 // `gearpath evaluate`: the evaluation matrix (core/evaluation) run offline through the
 // daemon's per-block engine, printed as tables per fault kind, gear, speed band, noise,
-// family...; optionally written as JSON (docs/evaluation.md). The held-out family
-// (modal_housing) is excluded by default, reported separately when included, and must never
-// be used for tuning.
+// family...; optionally written as JSON (docs/evaluation.md). The held-out families
+// (modal_housing, parametric_plate) are excluded by default, reported separately when
+// included, and must never be used for tuning.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -117,13 +117,13 @@ int RunEvaluate(const EvaluateArgs& args) {
     if (!f) {
       std::fprintf(stderr,
                    "gearpath evaluate: --family '%s' is not a family (lumped_perturbed, "
-                   "lumped_torsional, modal_housing)\n",
+                   "lumped_torsional, modal_housing, parametric_plate)\n",
                    name.c_str());
       return kExitBadInput;
     }
     if (IsHeldOut(*f) && filter.held_out == HeldOutSelection::kExclude) {
       std::fprintf(stderr,
-                   "gearpath evaluate: --family %s is the held-out family, excluded by default; "
+                   "gearpath evaluate: --family %s is a held-out family, excluded by default; "
                    "add --held-out-only (or --include-held-out) to run it, never to tune on it\n",
                    name.c_str());
       return kExitBadInput;
@@ -232,13 +232,15 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
                   "(e.g. --matrix full --sample 400)")
       ->check(Positive());
   cmd->add_option("--family", args->families,
-                  "only these families (lumped_perturbed, lumped_torsional, modal_housing)");
+                  "only these families (lumped_perturbed, lumped_torsional, modal_housing, "
+                  "parametric_plate)");
   auto* only = cmd->add_flag("--held-out-only", args->held_out_only,
-                             "run and print only the held-out family (modal_housing)");
+                             "run and print only the held-out families (modal_housing, "
+                             "parametric_plate)");
   auto* include = cmd->add_flag("--include-held-out", args->include_held_out,
-                                "run the held-out family too (reported separately)");
+                                "run the held-out families too (reported separately)");
   auto* exclude = cmd->add_flag("--exclude-held-out", args->exclude_held_out,
-                                "leave the held-out family out (the default; for tuning runs)");
+                                "leave the held-out families out (the default; for tuning runs)");
   only->excludes(include)->excludes(exclude);
   include->excludes(exclude);
   cmd->add_option("--json", args->json_path, "write every scenario's verdicts and the summary");

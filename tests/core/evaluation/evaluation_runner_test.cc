@@ -53,6 +53,34 @@ TEST(EvaluationRunner, RunsAScenarioReproducibly) {
   EXPECT_FALSE(FormatSummary(summary).empty());
 }
 
+// The time-domain family runs end to end, its severity normalised by secant steps and recorded,
+// reproducibly. (Held out: only that it runs is checked here, never what the daemon says.)
+TEST(EvaluationRunner, RunsAParametricPlateScenarioWithItsSeverityRecorded) {
+  Scenario s;
+  s.family = PlantFamily::kParametricPlate;
+  s.variant = TrainVariant::kDistinct;
+  s.fault = PlantFaultKind::kCombined;
+  s.gear = "G3";
+  s.input_rpm = 450.0;
+  s.noise = 0.05;
+  s.channels = ChannelSet::kSeatsAndHousing;
+  s.unmodelled = true;
+  s.seed = ScenarioSeed(s.Key());
+  const ScenarioOutcome a = RunScenario(s);
+  ASSERT_TRUE(a.error.empty()) << a.error;
+  EXPECT_EQ(a.verdicts.size(), static_cast<std::size_t>(kEvaluationBlocks));
+  EXPECT_GT(a.severity_scale, 0.0);
+  EXPECT_LE(a.severity.am_depth, a.severity.max_am_depth);
+  EXPECT_LE(a.severity.pulse_depth_m, a.severity.max_pulse_depth_m);
+  if (a.severity.am_depth < a.severity.max_am_depth) {
+    EXPECT_NEAR(std::abs(a.rms_change), 0.03, 0.0003);
+  }
+  const ScenarioOutcome b = RunScenario(s);
+  ASSERT_TRUE(b.error.empty()) << b.error;
+  EXPECT_EQ(a.rms_change, b.rms_change);
+  EXPECT_EQ(a.severity_scale, b.severity_scale);
+}
+
 // The observer sees every block, baseline and evaluation, in order, with the verdict the
 // scenario records for the evaluation ones (what `gearpath evaluate --dump-blocks` writes).
 TEST(EvaluationRunner, ObserverSeesEveryBlockWithTheRecordedVerdicts) {

@@ -1,6 +1,7 @@
 // Plant families: the perturbed plant is really different from the model the daemon gets, by
 // the expected order; the daemon's FRF set is the nominal model's; the modal housing's
-// responses are H_true F and its model is the shifted one.
+// responses are H_true F and its model is the shifted one. (parametric_plate: its own tests,
+// parametric_plate_plant_test.cc and the simulator's.)
 #include "core/evaluation/plant_family.h"
 
 #include <gtest/gtest.h>
@@ -21,6 +22,8 @@ double Median(std::vector<double> v) {
 TEST(PlantFamily, NamesAndHeldOut) {
   for (PlantFamily f : kAllPlantFamilies) EXPECT_EQ(ParsePlantFamily(PlantFamilyName(f)), f);
   EXPECT_TRUE(IsHeldOut(PlantFamily::kModalHousing));
+  EXPECT_TRUE(IsHeldOut(PlantFamily::kParametricPlate));
+  EXPECT_EQ(PlantFamilyName(PlantFamily::kParametricPlate), "parametric_plate");
   EXPECT_FALSE(IsHeldOut(PlantFamily::kLumpedPerturbed));
   EXPECT_FALSE(IsHeldOut(PlantFamily::kLumpedTorsional));
   EXPECT_EQ(MakeTrain(TrainVariant::kTable1).gears[3].teeth, 34);

@@ -23,9 +23,9 @@ TEST(ScenarioMatrix, FullIsTheWholeFactorial) {
   MatrixFilter all;
   all.held_out = HeldOutSelection::kInclude;
   const std::vector<Scenario> full = EnumerateScenarios(MatrixSize::kFull, all);
-  // 3 families x 2 trains x (4 kinds x 4 gears + 4 healthy replicas) x 5 speeds x 3 noise
+  // 4 families x 2 trains x (4 kinds x 4 gears + 4 healthy replicas) x 5 speeds x 3 noise
   // x 2 channel sets x 2 (unmodelled off / on).
-  EXPECT_EQ(full.size(), 3u * 2u * 20u * 5u * 3u * 2u * 2u);
+  EXPECT_EQ(full.size(), 4u * 2u * 20u * 5u * 3u * 2u * 2u);
   std::set<std::string> keys;
   std::set<std::uint64_t> seeds;
   for (std::size_t i = 0; i < full.size(); ++i) {
@@ -37,15 +37,23 @@ TEST(ScenarioMatrix, FullIsTheWholeFactorial) {
   EXPECT_EQ(seeds.size(), full.size());
 }
 
-TEST(ScenarioMatrix, HeldOutFamilyIsExcludedByDefault) {
+TEST(ScenarioMatrix, HeldOutFamiliesAreExcludedByDefault) {
   for (const Scenario& s : EnumerateScenarios(MatrixSize::kQuick)) {
     EXPECT_NE(s.family, PlantFamily::kModalHousing);
+    EXPECT_NE(s.family, PlantFamily::kParametricPlate);
+    EXPECT_FALSE(s.held_out());
   }
   MatrixFilter only;
   only.held_out = HeldOutSelection::kOnly;
   const std::vector<Scenario> held = EnumerateScenarios(MatrixSize::kQuick, only);
-  ASSERT_FALSE(held.empty());
+  ASSERT_EQ(held.size(), 2u * 2u * 20u);  // modal_housing and parametric_plate
   for (const Scenario& s : held) EXPECT_TRUE(s.held_out());
+  MatrixFilter plate;
+  plate.held_out = HeldOutSelection::kOnly;
+  plate.families = {PlantFamily::kParametricPlate};
+  const std::vector<Scenario> plates = EnumerateScenarios(MatrixSize::kQuick, plate);
+  ASSERT_EQ(plates.size(), 2u * 20u);
+  for (const Scenario& s : plates) EXPECT_EQ(s.family, PlantFamily::kParametricPlate);
   MatrixFilter one;
   one.families = {PlantFamily::kLumpedTorsional};
   for (const Scenario& s : EnumerateScenarios(MatrixSize::kQuick, one)) {
@@ -59,7 +67,7 @@ TEST(ScenarioMatrix, QuickIsASubsetOfFullWithTheSameSeedsAndCoversEveryLevel) {
   std::map<std::string, std::uint64_t> full;
   for (const Scenario& s : EnumerateScenarios(MatrixSize::kFull, all)) full[s.Key()] = s.seed;
   const std::vector<Scenario> quick = EnumerateScenarios(MatrixSize::kQuick, all);
-  EXPECT_EQ(quick.size(), 3u * 2u * 20u);
+  EXPECT_EQ(quick.size(), 4u * 2u * 20u);
   std::map<PlantFamily, std::set<std::string>> levels;
   for (const Scenario& s : quick) {
     ASSERT_TRUE(full.count(s.Key())) << s.Key();

@@ -1,0 +1,69 @@
+#include "core/evaluation/plant_stream.h"
+
+#include "core/evaluation/linear_plant_stream.h"
+#include "core/evaluation/parametric_plant_simulator.h"
+#include "core/evaluation/parametric_plate_plant.h"
+#include "core/evaluation/plant_simulator.h"
+
+namespace gearpath {
+namespace {
+
+Result<std::unique_ptr<PlantStream>> MakeLinearStream(const Plant& plant, const Scenario& sc,
+                                                      const PlantStreamConfig& config) {
+  PlantExcitationConfig ex;
+  ex.fault = sc.fault;
+  ex.faulty_gear = sc.gear;
+  ex.seed = sc.seed;
+  Result<PlantExcitation> excitation = PlantExcitation::Create(plant.train, ex);
+  if (!excitation) return Error{excitation.error()};
+  PlantSimulatorConfig sim_config;
+  sim_config.machine_id = config.machine_id;
+  sim_config.sample_rate_hz = config.sample_rate_hz;
+  sim_config.block_length = config.block_length;
+  sim_config.input_speed_hz = sc.input_rpm / 60.0;
+  sim_config.noise_relative = sc.noise;
+  sim_config.tones = sc.unmodelled;
+  sim_config.bursts = sc.unmodelled;
+  sim_config.speed_drift = sc.unmodelled;
+  sim_config.seed = sc.seed;
+  Result<PlantSimulator> sim = PlantSimulator::Create(plant.dynamics, plant.channels,
+                                                      std::move(excitation).value(), sim_config);
+  if (!sim) return Error{sim.error()};
+  return std::unique_ptr<PlantStream>(
+      std::make_unique<LinearPlantStream>(std::move(sim).value()));
+}
+
+Result<std::unique_ptr<PlantStream>> MakeParametricStream(const Plant& plant, const Scenario& sc,
+                                                          const PlantStreamConfig& config) {
+  if (!plant.parametric) return Error{"parametric stream: the plant has no parametric truth"};
+  Result<ToothFault> fault =
+      DrawToothFault(*plant.parametric, plant.train, sc.fault, sc.gear, sc.seed);
+  if (!fault) return Error{fault.error()};
+  ParametricSimulatorConfig c;
+  c.machine_id = config.machine_id;
+  c.sample_rate_hz = config.sample_rate_hz;
+  c.block_length = config.block_length;
+  c.input_speed_hz = sc.input_rpm / 60.0;
+  c.noise_relative = sc.noise;
+  c.tones = sc.unmodelled;
+  c.bursts = sc.unmodelled;
+  c.speed_drift = sc.unmodelled;
+  c.seed = sc.seed;
+  Result<ParametricPlantSimulator> sim =
+      ParametricPlantSimulator::Create(plant.parametric->truth, plant.parametric->channel_points,
+                                       plant.channels, std::move(fault).value(), c);
+  if (!sim) return Error{sim.error()};
+  return std::unique_ptr<PlantStream>(
+      std::make_unique<ParametricPlantSimulator>(std::move(sim).value()));
+}
+
+}  // namespace
+
+Result<std::unique_ptr<PlantStream>> MakePlantStream(const Plant& plant, const Scenario& scenario,
+                                                     const PlantStreamConfig& config) {
+  if (plant.dynamics) return MakeLinearStream(plant, scenario, config);
+  if (plant.parametric) return MakeParametricStream(plant, scenario, config);
+  return Error{"plant stream: the plant has no truth (dynamics or parametric)"};
+}
+
+}  // namespace gearpath
