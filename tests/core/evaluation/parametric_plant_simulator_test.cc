@@ -1,5 +1,6 @@
 // ParametricPlantSimulator (the parametric_plate family's time-domain stream), signal level:
-// healthy lines at the mesh harmonics; a crack adds sidebands at its gear's shaft rate around
+// healthy lines at the mesh harmonics, and without eccentricity nowhere but on the meshes'
+// grid; every tooth fault repeats once per revolution of its own gear's shaft; a crack adds sidebands at its gear's shaft rate around
 // its mesh's harmonics, over many orders; missing material adds a comb of the shaft rate;
 // severity normalisation reaches the target RMS change (or the caps); bit-identical streams;
 // no jump at block boundaries; no blow-up at any matrix speed; the speed drift drives the
@@ -98,6 +99,121 @@ TEST(ParametricPlantSimulator, HealthyRunShowsLinesAtTheMeshHarmonics) {
     for (std::size_t k : {270u, 290u, 273u, 287u}) {
       EXPECT_GT(p[k], 1e-8 * p[280]) << c << " " << k;
       EXPECT_LT(p[k], 1e-2 * p[280]) << c << " " << k;
+    }
+  }
+}
+
+// Without eccentricity a healthy gearbox has two periodic excitations only, the meshes (280
+// and 238 Hz at 10 Hz input): its steady state lies on a x 280 + b x 238 Hz, i.e. on the 14 Hz
+// grid (their gcd), mostly on the meshes' own harmonics (the rest is their intermodulation
+// through the shared intermediate shaft), and carries nothing at the shaft rates off that grid
+// (10 Hz input, 7 Hz intermediate and output). What leaves the grid is the integrator's time
+// discretisation (the stiffness sampled every step, off any common period): ~2e-8 of the
+// energy at 8x oversampling, 1e-2 of that at 16x. With the eccentricity back on, the
+// shaft-rate lines appear (~1e-2 of the energy): the check can see them.
+double OffGridShare(bool eccentric, std::uint32_t oversampling, double* mesh_share) {
+  ParametricSimulatorConfig c = OneHertzBins();
+  c.oversampling = oversampling;
+  Rig rig = MakeRig(3, PlantFaultKind::kNone, "", c, eccentric);
+  AccelBlock first;
+  rig.sim->NextBlock(false, first);  // the second block: 1.5 s after the start at rest
+  Eigen::MatrixXd x;
+  rig.sim->NoiseFreeNext(false, x);
+  double worst = 0.0;
+  *mesh_share = 1.0;
+  for (Eigen::Index ch = 0; ch < x.cols(); ++ch) {
+    const std::vector<double> p = Power(x.col(ch));
+    double total = 0.0, off = 0.0, mesh = 0.0;
+    for (std::size_t k = 1; k < p.size(); ++k) {
+      total += p[k];
+      if (k % 14 != 0) off += p[k];
+      if (MeshHarmonic(k)) mesh += p[k];
+    }
+    if (!eccentric) {
+      for (std::size_t k : {7u, 10u, 20u, 231u, 245u, 270u, 273u, 287u, 290u}) {
+        EXPECT_LT(p[k], 1e-10 * p[280]) << "channel " << ch << ", " << k << " Hz";
+      }
+    }
+    worst = std::max(worst, off / total);
+    *mesh_share = std::min(*mesh_share, mesh / total);
+  }
+  return worst;
+}
+
+TEST(ParametricPlantSimulator, HealthySteadyStateWithoutEccentricityLiesOnTheMeshGridOnly) {
+  double mesh8 = 0.0, mesh16 = 0.0, mesh_eccentric = 0.0;
+  const double off8 = OffGridShare(false, 8, &mesh8);
+  const double off16 = OffGridShare(false, 16, &mesh16);
+  const double eccentric = OffGridShare(true, 8, &mesh_eccentric);
+  std::printf("healthy energy off the 14 Hz mesh grid: %.2e (8x), %.2e (16x) without "
+              "eccentricity, %.2e with; on the mesh harmonics >= %.3f\n",
+              off8, off16, eccentric, mesh8);
+  EXPECT_LT(off8, 1e-7);
+  EXPECT_LT(off16, 0.1 * off8);  // discretisation error: falls with the step
+  EXPECT_GT(mesh8, 0.7);
+  EXPECT_GT(eccentric, 1e-4);
+}
+
+// Share of x's energy that is periodic with `period` samples (its synchronous average over
+// the whole revolutions at the end of x, extended periodically).
+double SynchronousShare(const Eigen::VectorXd& x, Eigen::Index period) {
+  const Eigen::Index revs = x.size() / period;
+  const Eigen::Index start = x.size() - revs * period;
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(period);
+  for (Eigen::Index r = 0; r < revs; ++r) mean += x.segment(start + r * period, period);
+  mean /= static_cast<double>(revs);
+  return static_cast<double>(revs) * mean.squaredNorm() /
+         x.segment(start, revs * period).squaredNorm();
+}
+
+// A tooth fault changes its gear's shaft's revolution, once per revolution: what it adds to
+// the response (faulty - healthy, same plant, steady state) is periodic with the faulty
+// gear's shaft and not with the other shafts. Distinct train (every shaft rate different) at
+// an input of fs / 833 (576 r/min): shaft periods of 833 (input), 1190 (intermediate) and
+// 1015 (output) samples exactly, so the synchronous averages are exact comb filters.
+TEST(ParametricPlantSimulator, ToothFaultRepeatsOncePerRevolutionOfItsOwnShaft) {
+  const GearTrain train = MakeTrain(TrainVariant::kDistinct);
+  const std::map<std::string, int> shaft_of = {{"G1", 0}, {"G2", 1}, {"G3", 1}, {"G4", 2}};
+  const Eigen::Index periods[3] = {833, 1190, 1015};
+  ParametricSimulatorConfig c;
+  c.block_length = 16660;  // 20 input revolutions, 14 and 16.4 of the others
+  c.input_speed_hz = 8000.0 / 833.0;
+  c.noise_relative = 0.0;
+  for (int eccentric = 0; eccentric < 2; ++eccentric) {
+    Rig healthy_rig = MakeRig(7, PlantFaultKind::kNone, "", c, eccentric == 1, train);
+    AccelBlock block;
+    healthy_rig.sim->NextBlock(false, block);
+    Eigen::MatrixXd healthy;
+    healthy_rig.sim->NoiseFreeNext(false, healthy);
+    for (PlantFaultKind kind : {PlantFaultKind::kTePulse, PlantFaultKind::kMeshAm,
+                                PlantFaultKind::kWearDip, PlantFaultKind::kCombined}) {
+      for (const auto& [gear, own] : shaft_of) {
+        Rig rig = MakeRig(7, kind, gear, c, eccentric == 1, train);
+        rig.sim->ScaleFaultSeverity(2.0);
+        rig.sim->NextBlock(true, block);  // the fault's onset transient dies out in this block
+        Eigen::MatrixXd faulty;
+        rig.sim->NoiseFreeNext(true, faulty);
+        const Eigen::MatrixXd d = faulty - healthy;
+        // The most affected channel.
+        Eigen::Index ch = 0;
+        for (Eigen::Index k = 1; k < d.cols(); ++k) {
+          if (d.col(k).norm() / healthy.col(k).norm() > d.col(ch).norm() / healthy.col(ch).norm()) {
+            ch = k;
+          }
+        }
+        double share[3];
+        for (int s = 0; s < 3; ++s) share[s] = SynchronousShare(d.col(ch), periods[s]);
+        const std::string what = std::string(PlantFaultKindName(kind)) + " on " + gear +
+                                 (eccentric ? ", eccentric" : "");
+        EXPECT_GT(share[own], 0.5) << what;
+        for (int s = 0; s < 3; ++s) {
+          if (s != own) {
+            EXPECT_LT(share[s], 0.5 * share[own]) << what << ", shaft " << s;
+          }
+        }
+        std::printf("%-30s synchronous share on shafts 1..3: %.3f %.3f %.3f\n", what.c_str(),
+                    share[0], share[1], share[2]);
+      }
     }
   }
 }
