@@ -2,7 +2,7 @@
 // noise, family, train variant, channel set, disturbances), as text tables and as JSON.
 //
 // Two partitions are always kept apart: the TUNING families and the HELD-OUT families
-// (modal_housing, parametric_plate; plant_family.h). Rates per group:
+// (parametric_plate; plant_family.h). Rates per group:
 //   detection  = detected faulty scenarios / faulty scenarios,
 //   right gear = faulty scenarios whose gear is right / faulty scenarios (not conditional on
 //                detection: a missed fault has no right gear),

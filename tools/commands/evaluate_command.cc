@@ -1,8 +1,8 @@
 // `gearpath evaluate`: the evaluation matrix (core/evaluation) run offline through the
 // daemon's per-block engine, printed as tables per fault kind, gear, speed band, noise,
-// family...; optionally written as JSON (docs/evaluation.md). The held-out families
-// (modal_housing, parametric_plate) are excluded by default, reported separately when
-// included, and must never be used for tuning.
+// family...; optionally written as JSON (docs/evaluation.md). The held-out family
+// (parametric_plate) is excluded by default, reported separately when included, and must
+// never be used for tuning.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -235,12 +235,11 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
                   "only these families (lumped_perturbed, lumped_torsional, modal_housing, "
                   "parametric_plate)");
   auto* only = cmd->add_flag("--held-out-only", args->held_out_only,
-                             "run and print only the held-out families (modal_housing, "
-                             "parametric_plate)");
+                             "run and print only the held-out family (parametric_plate)");
   auto* include = cmd->add_flag("--include-held-out", args->include_held_out,
-                                "run the held-out families too (reported separately)");
+                                "run the held-out family too (reported separately)");
   auto* exclude = cmd->add_flag("--exclude-held-out", args->exclude_held_out,
-                                "leave the held-out families out (the default; for tuning runs)");
+                                "leave the held-out family out (the default; for tuning runs)");
   only->excludes(include)->excludes(exclude);
   include->excludes(exclude);
   cmd->add_option("--json", args->json_path, "write every scenario's verdicts and the summary");

@@ -1,5 +1,5 @@
 // Slice test of the evaluation instrument: the quick matrix of the TUNING families (the
-// held-out family is never asserted on here, so no threshold is ever tuned against it) through
+// held-out family, parametric_plate, is never asserted on here, so no threshold is ever tuned against it) through
 // the current BlockProcessor, against the figures documented for it (docs/evaluation.md).
 // The constants are what the pipeline achieved when they were set; whoever improves the
 // pipeline raises them (and the doc) in the same commit. The margins absorb small numerical
@@ -26,8 +26,12 @@ namespace {
 // detection 53/64, right gear 31/64, 0/80; localisation tracking (shaft and mesh evidence from
 // order-tracked averages) right gear 37/64; the synchronous low-order ratio detection 54/64;
 // the locked exclusive residual as shaft evidence right gear 40/64.
-constexpr double kDocumentedDetection = 0.844;
-constexpr double kDocumentedRightGear = 0.625;
+// Since 2026-11-27 modal_housing is a tuning family (120 scenarios: 96 faulty, 24 healthy =
+// 120 healthy evaluation blocks): with the two-block score, the reconstructed envelope
+// indicators out of the score and the mesh from the orthogonal signature rise, detection
+// 84/96, right gear 67/96, 0/120 false alarms.
+constexpr double kDocumentedDetection = 0.875;
+constexpr double kDocumentedRightGear = 0.698;
 constexpr double kDocumentedFalseAlarmsPerBlock = 0.0;
 constexpr double kMargin = 0.05;
 
