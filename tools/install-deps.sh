@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
+  dpkg-dev  # tests/install: cpack -G DEB runs dpkg-shlibdeps for the package's Depends
   libeigen3-dev libfftw3-dev
   cyclonedds-dev cyclonedds-tools
   libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev libsystemd-dev

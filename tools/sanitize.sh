@@ -11,7 +11,9 @@
 # DDS, its security plugins and OpenSSL are not built with TSan: tools/tsan.supp keeps their
 # internal false positives out (each reason there); no suppression names gearpath code.
 # CTEST_REGEX (ctest -R) runs a slice instead, e.g. 'Npy|BlockProcessor' (with thread, name its
-# executables in TARGETS, or TARGETS=all).
+# executables in TARGETS, or TARGETS=all). LABELS (ctest -L) picks a slice by label instead:
+# LABELS=dds bash tools/sanitize.sh address runs the daemon, DDS, tools and integration tests
+# under ASan+UBSan and builds only their executables (as thread does), not the core tests.
 #
 # Every process writes its sanitizer reports to $BUILD_DIR/sanitizer-reports/ (log_path), the
 # daemons and tools the tests start included, whose stderr no test reads: the run fails if any
@@ -28,16 +30,22 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 mode=${1:-address}
 regex=${2:-}
-labels=
+labels=${LABELS:-}
 exclude=
 # The executables of the daemon and DDS tests (label dds: tests/idl, daemon, tools, integration).
 dds_targets='gearpathd gearpath test_idl test_daemon test_daemon_config test_tools test_tools_report
   test_integration'
 case "$mode" in
-  address) short=asan ;;
+  address)
+    short=asan
+    if [[ $labels == dds ]]; then
+      TARGETS=${TARGETS:-$dds_targets}
+      exclude='^test_soak_NOT_BUILT$'
+    fi
+    ;;
   thread)
     short=tsan
-    [[ -z $regex ]] && labels=dds
+    [[ -z $regex && -z $labels ]] && labels=dds
     # The soak executable (label soak) is not built: its placeholder test is not run either.
     exclude='^test_soak_NOT_BUILT$'
     TARGETS=${TARGETS:-$dds_targets}
