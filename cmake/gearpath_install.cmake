@@ -7,6 +7,7 @@
 #   /usr/share/doc/gearpath/                              README and docs/*.md
 #   /usr/share/gearpath/idl/gearpath.idl                  the DDS contract, for other vendors
 #   /usr/share/gearpath/fastdds/fastdds-profiles.xml      Fast DDS client profiles (deployment.md)
+#   /usr/share/man/man8/gearpathd.8.gz, man1/gearpath.1.gz  man pages made from --help by help2man
 # The unit and the paths in it are those of config/gearpathd.service.
 include(GNUInstallDirs)
 
@@ -20,6 +21,34 @@ file(GLOB gearpath_docs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/docs/*.md)
 install(FILES ${gearpath_docs} DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(FILES idl/gearpath.idl DESTINATION ${CMAKE_INSTALL_DATADIR}/gearpath/idl)
 install(FILES config/fastdds-profiles.xml DESTINATION ${CMAKE_INSTALL_DATADIR}/gearpath/fastdds)
+
+# Man pages generated from the programs' own --help and --version, so they cannot drift from the
+# options (help2man, tools/install-deps.sh). The daemon is an administrator's command (8).
+find_program(GEARPATH_HELP2MAN help2man)
+if(GEARPATH_HELP2MAN)
+  set(gearpath_man_pages)
+  foreach(entry "gearpathd;8;gearbox condition-monitoring daemon: transfer path analysis over DDS"
+                "gearpath;1;gearpathd's companion: simulate, replay, monitor, report, evaluate")
+    list(GET entry 0 program)
+    list(GET entry 1 section)
+    list(GET entry 2 summary)
+    set(page ${CMAKE_CURRENT_BINARY_DIR}/man/${program}.${section})
+    add_custom_command(
+      OUTPUT ${page}.gz
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${CMAKE_CURRENT_BINARY_DIR}/man
+      COMMAND ${GEARPATH_HELP2MAN} --no-info --no-discard-stderr --section=${section}
+              --name=${summary} --output=${page} $<TARGET_FILE:${program}>
+      COMMAND gzip -9nf ${page}
+      DEPENDS ${program}
+      COMMENT "man page ${program}(${section}) from its --help"
+      VERBATIM)
+    list(APPEND gearpath_man_pages ${page}.gz)
+    install(FILES ${page}.gz DESTINATION ${CMAKE_INSTALL_MANDIR}/man${section})
+  endforeach()
+  add_custom_target(gearpath_man_pages ALL DEPENDS ${gearpath_man_pages})
+else()
+  message(WARNING "help2man not found: no man pages (tools/install-deps.sh installs it)")
+endif()
 
 set(CPACK_PACKAGE_NAME gearpath)
 set(CPACK_PACKAGE_VENDOR "gearpath")

@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   dpkg-dev  # tests/install: cpack -G DEB runs dpkg-shlibdeps for the package's Depends
+  help2man  # cmake/gearpath_install.cmake: the man pages, made from --help
   libeigen3-dev libfftw3-dev
   cyclonedds-dev cyclonedds-tools
   libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev libsystemd-dev
