@@ -11,9 +11,16 @@
 // recorded-figures regression test).
 #include <benchmark/benchmark.h>
 
+#include <chrono>
+#include <complex>
+#include <ctime>
 #include <string>
+#include <vector>
 
+#include "core/dsp/spectrum.h"
+#include "core/inverse/identification_operator.h"
 #include "core/pipeline/block_processor.h"
+#include "core/pipeline/frf_grid_mapping.h"
 #include "tests/bench/reference_workload.h"
 
 namespace gearpath {
@@ -63,6 +70,109 @@ BENCHMARK(BM_ReferenceBlock)
     ->Args({18, 16000, 0, 0})
     ->Args({12, 65536, 0, 0})
     ->Unit(benchmark::kMillisecond);
+
+// The same blocks with the processor's per-stage timing on: one counter per part of Process()
+// (validation, then every stage), in ms of wall clock per block (the mean over the timed
+// blocks; with --benchmark_repetitions the aggregates are taken over the repetitions' means),
+// their sum, and cpu_over_wall (multiply a stage's figure by it for its CPU time on a loaded
+// machine). Since issue 9 the residual and the path energies are computed in the
+// identification pass (path_energy keeps the shares and the criterion).
+void BM_ReferenceStages(benchmark::State& state) {
+  const auto channels = static_cast<int>(state.range(0));
+  const auto n = static_cast<std::uint32_t>(state.range(1));
+  MachineSetup setup = ReferenceSetup(channels, static_cast<int>(state.range(2)));
+  AccelBlock block = ReferenceBlock(setup.frf_set, n, state.range(3) != 0);
+  auto processor = BlockProcessor::Create(std::move(setup));
+  if (!processor.ok()) {
+    state.SkipWithError(processor.error().c_str());
+    return;
+  }
+  if (Status s = processor->Prepare(n); !s) {
+    state.SkipWithError(s.error().c_str());
+    return;
+  }
+  BlockResult result;
+  std::uint64_t seq = 0;
+  for (int i = 0; i < 21; ++i) {
+    block.sequence = ++seq;
+    (void)processor->Process(block.view(), result);
+  }
+  processor->set_stage_timing(true);
+  processor->ResetStageTimes();
+  const auto wall0 = std::chrono::steady_clock::now();
+  const std::clock_t cpu0 = std::clock();
+  for (auto _ : state) {
+    block.sequence = ++seq;
+    const ProcessOutcome o = processor->Process(block.view(), result);
+    benchmark::DoNotOptimize(o.reason);
+  }
+  // The stage times are wall clock: on a loaded machine they include preemption. This ratio of
+  // the loop's CPU time to its wall time scales them to CPU time (preemption falls on every
+  // stage in proportion to its length).
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  state.counters["cpu_over_wall"] = wall > 0.0 ? cpu / wall : 0.0;
+  double sum = 0.0;
+  for (const StageTime& t : processor->stage_times()) {
+    if (t.blocks == 0) continue;
+    const double ms = 1e3 * t.total_s / static_cast<double>(t.blocks);
+    state.counters[std::string(t.stage) + "_ms"] = ms;
+    sum += ms;
+  }
+  state.counters["sum_ms"] = sum;
+}
+BENCHMARK(BM_ReferenceStages)
+    ->ArgNames({"channels", "samples", "tracking", "drift"})
+    ->Args({12, 16000, 0, 0})
+    ->Args({18, 16000, 0, 0})
+    ->Args({12, 65536, 0, 0})
+    ->Unit(benchmark::kMillisecond);
+
+// The per-bin identification operator alone on the reference block's spectra, every in-range
+// bin through IdentificationOperator::Identify, without (figures:0) and with (figures:1) the
+// per-bin figures; the difference is the cost of the residual ||x - H F|| (issue 9).
+void BM_ReferenceIdentify(benchmark::State& state) {
+  const bool figures = state.range(0) != 0;
+  constexpr std::uint32_t kN = 16000;
+  const MachineSetup setup = ReferenceSetup(12, 0);
+  const AccelBlock block = ReferenceBlock(setup.frf_set, kN, false);
+  auto map = MapFrfToBlockGrid(setup.frf_set.decoupled, kN, kFs);
+  if (!map) {
+    state.SkipWithError(map.error().c_str());
+    return;
+  }
+  auto op = IdentificationOperator::Create(*map->in_range, setup.options.identification);
+  if (!op) {
+    state.SkipWithError(op.error().c_str());
+    return;
+  }
+  const std::size_t channels = block.channels.size();
+  const std::size_t bins = kN / 2 + 1;
+  std::vector<double> time(channels * kN);
+  for (std::size_t i = 0; i < time.size(); ++i) time[i] = block.samples[i];
+  std::vector<std::complex<double>> spec(channels * bins);
+  auto spectrum = Spectrum::Create(kN, channels, kFs);
+  if (!spectrum || !spectrum->Process(time, spec).ok()) {
+    state.SkipWithError("spectrum");
+    return;
+  }
+  const Eigen::Index in_range = map->frf.bins();
+  Eigen::MatrixXcd x(static_cast<Eigen::Index>(channels), in_range);
+  for (Eigen::Index i = 0; i < in_range; ++i) {
+    for (std::size_t c = 0; c < channels; ++c) {
+      x(static_cast<Eigen::Index>(c), i) = spec[c * bins + map->first_bin + static_cast<std::size_t>(i)];
+    }
+  }
+  Eigen::MatrixXcd forces(op->paths(), in_range);
+  BinFigures fig;
+  for (auto _ : state) {
+    for (Eigen::Index i = 0; i < in_range; ++i) {
+      (void)op->Identify(i, x.col(i), forces.col(i), figures ? &fig : nullptr);
+    }
+    benchmark::DoNotOptimize(forces.data());
+  }
+}
+BENCHMARK(BM_ReferenceIdentify)->ArgName("figures")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // Create + Prepare of the reference machine (the precompute before READY=1).
 void BM_ReferencePrecompute(benchmark::State& state) {
