@@ -26,8 +26,9 @@
 // (median alpha and condition number, maximum condition number, relative residual, bin counts),
 // both kurtogram bands, every shaft's envelope indicators (raw and reconstructed, harmonics,
 // thresholds, enhancement), every condition-indicator set (revolutions, values, z-scores, set
-// score), the block score and its limits, and the verdict (state, gear, shaft, mesh, confidence,
-// candidates).
+// score), the block score and its limits, what the localisation stood on (BlockLocalisation:
+// rate-group and mesh evidence, transfer-signature rises), and the verdict (state, gear, shaft,
+// mesh, confidence, candidates).
 //
 // Tolerance: a figure passes when |now - stored| <= 1e-6 x max(|now|, |stored|), or
 // <= 1e-9 x the largest magnitude of its named vector (small entries computed from the same sums
@@ -154,6 +155,22 @@ void RecordResult(Recorder& r, const ProcessOutcome& o, const BlockResult& res,
                      static_cast<double>(sc.baseline_blocks_needed)});
   r.Text("score_by", std::string(sc.indicator) + "@" + std::string(sc.signal) + "@" +
                          std::string(sc.shaft));
+  // What the localisation stood on (BlockLocalisation): the rate groups' evidence, the chosen
+  // group's mesh evidence and every transfer signature's rise (from the measured channels and
+  // the identified forces).
+  const BlockLocalisation& loc = res.localisation;
+  r.Values("localisation", {static_cast<double>(loc.group), static_cast<double>(loc.group_count),
+                            static_cast<double>(loc.mesh_count)});
+  r.Values("localisation_shaft_evidence",
+           {loc.shaft_evidence.begin(), loc.shaft_evidence.end()});
+  r.Values("localisation_shaft_evidence_accumulated",
+           {loc.shaft_evidence_accumulated.begin(), loc.shaft_evidence_accumulated.end()});
+  r.Values("localisation_mesh_evidence", {loc.mesh_evidence.begin(), loc.mesh_evidence.end()});
+  std::vector<double> signatures;
+  for (const auto& group : loc.signature_excess) {
+    for (const auto& mesh : group) signatures.insert(signatures.end(), mesh.begin(), mesh.end());
+  }
+  r.Values("localisation_signature_excess", signatures);
   const GearVerdict& v = res.verdict;
   r.Values("verdict", {static_cast<double>(v.state), static_cast<double>(v.gear),
                        static_cast<double>(v.shaft), v.characteristic_hz, v.confidence,
