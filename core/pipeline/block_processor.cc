@@ -342,8 +342,8 @@ std::span<const double> BlockProcessor::DominantPathSignal(std::size_t channel) 
       channel >= im.machine.channels) {
     return {};
   }
-  const BlockWorkspace& w = im.last_shape->work;
-  return std::span<const double>(w.dominant_time).subspan(channel * w.n, w.n);
+  BlockWorkspace& w = im.last_shape->work;  // made on the first call after a block
+  return std::span<const double>(w.DominantTime()).subspan(channel * w.n, w.n);
 }
 
 bool BlockProcessor::PathSignal(std::size_t path, std::size_t channel,
