@@ -383,6 +383,8 @@ TEST(RecordedFiguresTest, EveryPublishedFigureMatchesTheRecordedStream) {
          "change regenerates them (see the file's header)";
   int reported = 0;
   int failures = 0;
+  double largest = 0.0;  // largest relative difference of a figure that is not 0 in both
+  std::string largest_at;
   for (std::size_t i = 0; i < now.size(); ++i) {
     const Figure& a = now[i];
     const Figure& b = stored[i];
@@ -401,6 +403,12 @@ TEST(RecordedFiguresTest, EveryPublishedFigureMatchesTheRecordedStream) {
       if (std::isfinite(v)) scale = std::max(scale, std::abs(v));
     }
     for (std::size_t j = 0; j < a.values.size(); ++j) {
+      const double relative = std::abs(a.values[j] - b.values[j]) /
+                              std::max(std::abs(a.values[j]), std::abs(b.values[j]));
+      if (std::isfinite(relative) && relative > largest) {
+        largest = relative;
+        largest_at = a.key + "[" + std::to_string(j) + "]";
+      }
       if (Close(a.values[j], b.values[j], scale)) continue;
       ++failures;
       if (reported++ < 40) {
@@ -410,6 +418,8 @@ TEST(RecordedFiguresTest, EveryPublishedFigureMatchesTheRecordedStream) {
       }
     }
   }
+  std::printf("largest relative difference from the recording: %.3g at %s\n", largest,
+              largest_at.empty() ? "-" : largest_at.c_str());
   EXPECT_EQ(failures, 0) << failures << " figures differ from the recording (first 40 shown)";
 }
 
