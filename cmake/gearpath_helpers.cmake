@@ -10,6 +10,12 @@ function(gearpath_module name)
     add_library(gearpath_${name} STATIC ${sources})
     target_include_directories(gearpath_${name} PUBLIC ${PROJECT_SOURCE_DIR})
     target_link_libraries(gearpath_${name} PUBLIC ${ARG_DEPS} PRIVATE gearpath_warnings)
+    # GCC's -O2 vectorises only loops whose trip count is a known multiple of the vector length
+    # ("very cheap"); the per-block kernels (docs/performance.md) are written for the vectoriser,
+    # so the core libraries use the -O3 cost model at every optimisation level. It changes which
+    # loops are vectorised, not results: without -ffast-math no floating-point sum is reordered.
+    target_compile_options(gearpath_${name} PRIVATE
+      $<$<AND:$<CXX_COMPILER_ID:GNU>,$<NOT:$<CONFIG:Debug>>>:-fvect-cost-model=dynamic>)
     set_target_properties(gearpath_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   else()
     add_library(gearpath_${name} INTERFACE)

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "core/common/simd_clones.h"
 #include "core/dsp/input_checks.h"
 
 namespace gearpath {
@@ -19,6 +20,94 @@ std::size_t NextPowerOfTwo(std::size_t n) {
   std::size_t p = 1;
   while (p < n) p <<= 1;
   return p;
+}
+
+// Lags handled together by Autocorrelation (one vector of doubles on AVX-512).
+constexpr std::size_t kLagGroup = 8;
+
+// sum[lag] = sum_{i = lag}^{n-1} h[i] h[i - lag] for lag = 0..max_lag, with rev[k] = h[n-1-k].
+// kLagGroup lags at a time: for each i, h[i] times kLagGroup consecutive values of rev, so the
+// compiler vectorises across lags while every lag's sum still runs over i in increasing order
+// (the same rounding as one lag at a time).
+GEARPATH_SIMD_CLONES
+void Autocorrelation(const double* __restrict h, const double* __restrict rev, std::size_t n,
+                     std::size_t max_lag, double* __restrict sum) noexcept {
+  for (std::size_t lag0 = 0; lag0 <= max_lag; lag0 += kLagGroup) {
+    const std::size_t lags = std::min(kLagGroup, max_lag + 1 - lag0);
+    double acc[kLagGroup] = {};
+    // The first kLagGroup - 1 samples, where the larger lags of the group have no partner yet.
+    const std::size_t head = std::min(n, lag0 + kLagGroup - 1);
+    for (std::size_t i = lag0; i < head; ++i) {
+      for (std::size_t l = 0; l < lags && lag0 + l <= i; ++l) acc[l] += h[i] * h[i - lag0 - l];
+    }
+    for (std::size_t i = head; i < n; ++i) {
+      const double hi = h[i];
+      const double* partner = rev + (n - 1 - i + lag0);  // partner[l] = h[i - lag0 - l]
+      for (std::size_t l = 0; l < kLagGroup; ++l) acc[l] += hi * partner[l];
+    }
+    for (std::size_t l = 0; l < lags; ++l) sum[lag0 + l] = acc[l];
+  }
+}
+
+// Lanes of PowerMoments' partial sums.
+constexpr std::size_t kMomentLanes = 8;
+
+// m2 = sum |c|^2 and m4 = sum |c|^4 over n complex values c (interleaved re, im), in
+// kMomentLanes interleaved partial sums added at the end: element-wise work the compiler
+// vectorises (the order of the sum differs from one running sum by rounding only).
+GEARPATH_SIMD_CLONES
+void PowerMoments(const double* __restrict c, std::size_t n, double* m2, double* m4) noexcept {
+  double s2[kMomentLanes] = {};
+  double s4[kMomentLanes] = {};
+  std::size_t i = 0;
+  for (; i + kMomentLanes <= n; i += kMomentLanes) {
+    for (std::size_t l = 0; l < kMomentLanes; ++l) {
+      const double re = c[2 * (i + l)];
+      const double im = c[2 * (i + l) + 1];
+      const double p = re * re + im * im;
+      s2[l] += p;
+      s4[l] += p * p;
+    }
+  }
+  double a2 = 0.0;
+  double a4 = 0.0;
+  for (std::size_t l = 0; l < kMomentLanes; ++l) {
+    a2 += s2[l];
+    a4 += s4[l];
+  }
+  for (; i < n; ++i) {
+    const double p = c[2 * i] * c[2 * i] + c[2 * i + 1] * c[2 * i + 1];
+    a2 += p;
+    a4 += p * p;
+  }
+  *m2 = a2;
+  *m4 = a4;
+}
+
+// Samples the FIR filter handles together (two kB, in L1).
+constexpr std::size_t kFirBlock = 256;
+
+// out[i] = sum_{j=0}^{order} a[j] h[first + i - j] for i < count (first >= order): coefficient
+// by coefficient over a block of outputs, so the compiler vectorises across outputs while each
+// output still sums j = 0, 1, ..., order in that order.
+GEARPATH_SIMD_CLONES
+void PredictionError(const double* __restrict a, std::size_t order, const double* __restrict h,
+                     std::size_t first, std::size_t count, double* __restrict out) noexcept {
+  std::size_t i0 = 0;
+  for (; i0 + kFirBlock <= count; i0 += kFirBlock) {
+    double* o = out + i0;
+    for (std::size_t t = 0; t < kFirBlock; ++t) o[t] = 0.0;
+    for (std::size_t j = 0; j <= order; ++j) {
+      const double aj = a[j];
+      const double* src = h + first + i0 - j;
+      for (std::size_t t = 0; t < kFirBlock; ++t) o[t] += aj * src[t];
+    }
+  }
+  for (std::size_t i = i0; i < count; ++i) {
+    double e = 0.0;
+    for (std::size_t j = 0; j <= order; ++j) e += a[j] * h[first + i - j];
+    out[i] = e;
+  }
 }
 
 }  // namespace
@@ -103,6 +192,8 @@ Result<Kurtogram> Kurtogram::Create(std::size_t block_length, double sample_rate
     k.rows_.push_back(row);
     k.max_bands_ = std::max(k.max_bands_, static_cast<std::size_t>(bands));
   }
+  // The plans' input buffers are uninitialised: all of each may hold anything.
+  for (const FftPlan& plan : k.envelope_plans_) k.plan_written_.push_back(plan.length());
   if (k.rows_.empty()) {
     return Error{stage + ": min_bandwidth_hz " + std::to_string(options.min_bandwidth_hz) +
                  " leaves no level (level 0 is " + std::to_string(sample_rate_hz / 2.0) + " Hz)"};
@@ -127,7 +218,7 @@ Result<Kurtogram> Kurtogram::Create(std::size_t block_length, double sample_rate
   k.taper_ratio_ = (w4 / nb) / ((w2 / nb) * (w2 / nb));
   if (options.whitening == KurtogramWhitening::kAutoregressive) {
     k.ar_work_.assign(3 * (static_cast<std::size_t>(options.ar_order) + 1), 0.0);
-    k.history_.assign(block_length, 0.0);
+    k.history_.assign(2 * block_length, 0.0);  // the block, then reversed
   }
   k.map_.assign(k.rows_.size() * k.max_bands_, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t r = 0; r < k.rows_.size(); ++r) {
@@ -147,22 +238,27 @@ std::size_t Kurtogram::BandFirstBin(int bands, int index) const noexcept {
   return std::max<std::size_t>(k, 1);
 }
 
-double Kurtogram::BandKurtosis(FftPlan& plan, std::size_t first_bin, std::size_t end_bin) noexcept {
+double Kurtogram::BandKurtosis(std::size_t plan_index, std::size_t first_bin,
+                               std::size_t end_bin) noexcept {
+  FftPlan& plan = envelope_plans_[plan_index];
   std::span<std::complex<double>> in = plan.complex_in();
   const std::span<const std::complex<double>> spectrum = forward_.complex_out();
   // Baseband shift: bin first_bin goes to 0. A frequency shift multiplies c(t) by a unit
-  // phasor, so |c| and the kurtosis are unchanged.
+  // phasor, so |c| and the kurtosis are unchanged. The zero padding: an out-of-place complex
+  // FFT keeps its input, so only what the previous band wrote past this one's bins is zeroed.
   const std::size_t count = end_bin - first_bin;
   std::copy_n(spectrum.begin() + static_cast<std::ptrdiff_t>(first_bin), count, in.begin());
-  std::fill(in.begin() + static_cast<std::ptrdiff_t>(count), in.end(), 0.0);
+  std::size_t& written = plan_written_[plan_index];
+  if (written > count) {
+    std::fill(in.begin() + static_cast<std::ptrdiff_t>(count),
+              in.begin() + static_cast<std::ptrdiff_t>(written), 0.0);
+  }
+  written = count;
   plan.Execute();
+  const std::span<const std::complex<double>> out = plan.complex_out();
   double m2 = 0.0;
   double m4 = 0.0;
-  for (const std::complex<double>& c : plan.complex_out()) {
-    const double p = std::norm(c);
-    m2 += p;
-    m4 += p * p;
-  }
+  PowerMoments(reinterpret_cast<const double*>(out.data()), out.size(), &m2, &m4);
   if (!(m2 > 0.0)) return 0.0;  // a silent band: no evidence either way
   const double m = static_cast<double>(in.size());
   const double tapered = (m4 / m) / ((m2 / m) * (m2 / m));  // SK + 2 of the tapered block
@@ -171,19 +267,20 @@ double Kurtogram::BandKurtosis(FftPlan& plan, std::size_t first_bin, std::size_t
 
 void Kurtogram::Whiten() noexcept {
   std::span<double> x = forward_.real_in();
-  std::copy(x.begin(), x.end(), history_.begin());
   const std::size_t n = block_length_;
+  // history_: the block, then the block reversed (Autocorrelation's partner reads).
+  double* h = history_.data();
+  double* rev = h + n;
+  std::copy(x.begin(), x.end(), h);
+  std::reverse_copy(x.begin(), x.end(), rev);
   const auto p = static_cast<std::size_t>(options_.ar_order);
   double* r = ar_work_.data();
   double* a = r + (p + 1);
   double* scratch = a + (p + 1);
   // Biased autocorrelation: its Toeplitz matrix is positive semi-definite, so Levinson-Durbin
   // yields a minimum-phase (stable) predictor.
-  for (std::size_t lag = 0; lag <= p; ++lag) {
-    double sum = 0.0;
-    for (std::size_t i = lag; i < n; ++i) sum += history_[i] * history_[i - lag];
-    r[lag] = sum / static_cast<double>(n);
-  }
+  Autocorrelation(h, rev, n, p, r);
+  for (std::size_t lag = 0; lag <= p; ++lag) r[lag] /= static_cast<double>(n);
   if (!(r[0] > 0.0)) return;  // silent block: nothing to whiten
   // A 1e-9 diagonal load keeps the recursion regular for noise-free tones.
   double error = r[0] * (1.0 + 1e-9);
@@ -201,11 +298,7 @@ void Kurtogram::Whiten() noexcept {
   }
   // Prediction error e[i] = sum_j a[j] x[i - j]; the first p samples lack history.
   std::fill(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(p), 0.0);
-  for (std::size_t i = p; i < n; ++i) {
-    double e = 0.0;
-    for (std::size_t j = 0; j <= p; ++j) e += a[j] * history_[i - j];
-    x[i] = e;
-  }
+  PredictionError(a, p, h, p, n - p, x.data() + p);
 }
 
 Result<KurtogramBand> Kurtogram::Process(std::span<const double> block) noexcept {
@@ -231,8 +324,8 @@ Result<KurtogramBand> Kurtogram::Process(std::span<const double> block) noexcept
     const int bands = row.BandCount();
     double* out = map_.data() + r * max_bands_;
     for (int i = 0; i < bands; ++i) {
-      const double sk = BandKurtosis(envelope_plans_[rows_[r].plan], BandFirstBin(bands, i),
-                                     BandFirstBin(bands, i + 1));
+      const double sk =
+          BandKurtosis(rows_[r].plan, BandFirstBin(bands, i), BandFirstBin(bands, i + 1));
       out[i] = sk;
       if (sk > best_kurtosis) {  // strict: ties keep the wider (earlier) band
         best_kurtosis = sk;

@@ -137,16 +137,18 @@ class Kurtogram {
 
   explicit Kurtogram(FftPlan forward) : forward_(std::move(forward)) {}
   std::size_t BandFirstBin(int bands, int index) const noexcept;
-  double BandKurtosis(FftPlan& plan, std::size_t first_bin, std::size_t end_bin) noexcept;
+  double BandKurtosis(std::size_t plan_index, std::size_t first_bin,
+                      std::size_t end_bin) noexcept;
 
   void Whiten() noexcept;  // AR prediction error of forward_.real_in(), in place
 
   FftPlan forward_;
   std::vector<FftPlan> envelope_plans_;
+  std::vector<std::size_t> plan_written_;  // per plan: leading inputs that may be non-zero
   std::vector<double> taper_;    // Tukey window, block_length
   double taper_ratio_ = 1.0;     // <w^4> / <w^2>^2
   std::vector<double> ar_work_;  // autocorrelation, coefficients, Levinson scratch
-  std::vector<double> history_;  // whitening input copy, block_length
+  std::vector<double> history_;  // whitening input copy, then reversed: 2 block_length
   std::vector<Row> rows_;
   std::vector<double> map_;  // rows x max_bands_, NaN where a row has fewer bands
   std::size_t max_bands_ = 0;

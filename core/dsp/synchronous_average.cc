@@ -7,6 +7,11 @@
 #include <string>
 #include <utility>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
+#include "core/common/simd_clones.h"
 #include "core/dsp/cubic_interpolation.h"
 #include "core/dsp/input_checks.h"
 #include "core/dsp/order_tracker.h"
@@ -21,6 +26,115 @@ constexpr std::size_t kMaxPoints = std::size_t{1} << 20;
 // Index of the plan of `points` (a power of two >= kMinPoints) in the plan vectors.
 std::size_t PlanIndex(std::size_t points) noexcept {
   return static_cast<std::size_t>(std::countr_zero(points) - std::countr_zero(kMinPoints));
+}
+
+// The points [begin, begin + count) of `plan` read from x (n samples): out[m] = the point's
+// value (or out[m] += it with `add`), as ApplyCubicStencil computes it.
+struct ResampleArgs {
+  const double* x;
+  std::size_t n;
+  const SynchronousAveragePlan* plan;
+  std::size_t begin;
+  std::size_t count;
+  double* out;
+  bool add;
+};
+
+inline double PointAt(const ResampleArgs& a, std::size_t p) noexcept {
+  const SynchronousAveragePlan& pl = *a.plan;
+  const double* s = a.x + pl.first[p];
+  // The same terms in the same order as ApplyCubicStencil.
+  return pl.w0[p] * s[0] + pl.w1[p] * s[1] - pl.w2[p] * s[2] + pl.w3[p] * s[3];
+}
+
+void ResampleScalar(const ResampleArgs& a, std::size_t from) noexcept {
+  for (std::size_t m = from; m < a.count; ++m) {
+    const double v = PointAt(a, a.begin + m);
+    a.out[m] = a.add ? a.out[m] + v : v;
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(GEARPATH_NO_SIMD_CLONES)
+#define GEARPATH_RESAMPLE_AVX512 1
+// Eight points at a time: their samples lie in the 16-sample window at the first one's first
+// sample whenever the eighth one's stencil ends inside it (points at most a sample apart, as
+// M >= fs / f makes them); two loads and four two-register permutes replace 32 loads. Groups
+// that do not fit (a warp stretching the grid, the block's end) go point by point.
+__attribute__((target("avx512f"))) void ResampleAvx512(const ResampleArgs& a) noexcept {
+  const SynchronousAveragePlan& pl = *a.plan;
+  const std::uint32_t* first = pl.first.data() + a.begin;
+  const double* w0 = pl.w0.data() + a.begin;
+  const double* w1 = pl.w1.data() + a.begin;
+  const double* w2 = pl.w2.data() + a.begin;
+  const double* w3 = pl.w3.data() + a.begin;
+  const __m512i one = _mm512_set1_epi64(1);
+  const __m512i last_in_window = _mm512_set1_epi64(15);
+  std::size_t m = 0;
+  for (; m + 8 <= a.count; m += 8) {
+    const std::uint32_t f0 = first[m];
+    const __m256i f = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(first + m));
+    const __m512i i0 =
+        _mm512_maskz_cvtepu32_epi64(0xFF, _mm256_sub_epi32(f, _mm256_set1_epi32(static_cast<int>(f0))));
+    const __m512i i1 = _mm512_add_epi64(i0, one);
+    const __m512i i2 = _mm512_add_epi64(i1, one);
+    const __m512i i3 = _mm512_add_epi64(i2, one);
+    // Every stencil inside the window (a point before f0 wraps to a huge index), and the window
+    // inside the block.
+    if (_mm512_cmpgt_epu64_mask(i3, last_in_window) != 0 || f0 + 16 > a.n) {
+      for (std::size_t k = m; k < m + 8; ++k) {
+        const double v = PointAt(a, a.begin + k);
+        a.out[k] = a.add ? a.out[k] + v : v;
+      }
+      continue;
+    }
+    const __m512d lo = _mm512_loadu_pd(a.x + f0);
+    const __m512d hi = _mm512_loadu_pd(a.x + f0 + 8);
+    const __m512d s0 = _mm512_permutex2var_pd(lo, i0, hi);
+    const __m512d s1 = _mm512_permutex2var_pd(lo, i1, hi);
+    const __m512d s2 = _mm512_permutex2var_pd(lo, i2, hi);
+    const __m512d s3 = _mm512_permutex2var_pd(lo, i3, hi);
+    // w0 s0 + w1 s1 - w2 s2 + w3 s3, left to right, no fused multiply-add: the scalar bits.
+    __m512d v = _mm512_add_pd(_mm512_mul_pd(_mm512_loadu_pd(w0 + m), s0),
+                              _mm512_mul_pd(_mm512_loadu_pd(w1 + m), s1));
+    v = _mm512_sub_pd(v, _mm512_mul_pd(_mm512_loadu_pd(w2 + m), s2));
+    v = _mm512_add_pd(v, _mm512_mul_pd(_mm512_loadu_pd(w3 + m), s3));
+    if (a.add) v = _mm512_add_pd(_mm512_loadu_pd(a.out + m), v);
+    _mm512_storeu_pd(a.out + m, v);
+  }
+  ResampleScalar(a, m);
+}
+
+bool HaveAvx512() noexcept {
+  static const bool have = __builtin_cpu_supports("avx512f");
+  return have;
+}
+#endif
+
+// mean[k] += Y_k and spread[k] += |Y_k|^2 for k < orders, Y_k = bins[k] x (edge at k = 0 and
+// k = half, else interior); complex values as interleaved (re, im) doubles. Element-wise over
+// the orders, which the compiler vectorises.
+GEARPATH_SIMD_CLONES
+void AccumulateOrders(const double* __restrict bins, std::size_t orders, std::size_t half,
+                      double interior, double edge, double* __restrict mean,
+                      double* __restrict spread) noexcept {
+  for (std::size_t k = 0; k < orders; ++k) {
+    const double scale = (k == 0 || k == half) ? edge : interior;
+    const double re = bins[2 * k] * scale;
+    const double im = bins[2 * k + 1] * scale;
+    mean[2 * k] += re;
+    mean[2 * k + 1] += im;
+    spread[k] += re * re + im * im;
+  }
+}
+
+void Resample(const ResampleArgs& a) noexcept {
+#ifdef GEARPATH_RESAMPLE_AVX512
+  if (HaveAvx512()) {
+    ResampleAvx512(a);
+    return;
+  }
+#endif
+  ResampleScalar(a, 0);
 }
 
 }  // namespace
@@ -80,7 +194,11 @@ SynchronousAverageRecord SynchronousAverage::MakeRecord() const {
 SynchronousAveragePlan SynchronousAverage::MakePlan() const {
   SynchronousAveragePlan plan;
   // R M < 2 N: M < 2 fs / f and R <= (N - 1) f / fs.
-  plan.stencils.assign(2 * block_length_, CubicStencil{});
+  plan.first.assign(2 * block_length_, 0);
+  plan.w0.assign(2 * block_length_, 0.0);
+  plan.w1.assign(2 * block_length_, 0.0);
+  plan.w2.assign(2 * block_length_, 0.0);
+  plan.w3.assign(2 * block_length_, 0.0);
   return plan;
 }
 
@@ -95,7 +213,9 @@ Status SynchronousAverage::Plan(double shaft_hz, SynchronousAveragePlan& plan,
     return Error{std::string(kStage) + ": shaft_hz " + std::to_string(shaft_hz) +
                  " must be finite and positive"};
   }
-  if (plan.stencils.size() < 2 * block_length_) {
+  if (plan.first.size() < 2 * block_length_ || plan.w0.size() < 2 * block_length_ ||
+      plan.w1.size() < 2 * block_length_ || plan.w2.size() < 2 * block_length_ ||
+      plan.w3.size() < 2 * block_length_) {
     return Error{std::string(kStage) + ": plan was not made by this stage's MakePlan()"};
   }
   const double fs = sample_rate_hz_;
@@ -127,7 +247,12 @@ Status SynchronousAverage::Plan(double shaft_hz, SynchronousAveragePlan& plan,
   for (std::size_t p = 0; p < points; ++p) {
     const double at = static_cast<double>(p) * step;
     const double u = warp.empty() ? at : std::clamp(WarpAt(warp, at), 0.0, last);
-    plan.stencils[p] = MakeCubicStencil(block_length_, u);
+    const CubicStencil st = MakeCubicStencil(block_length_, u);
+    plan.first[p] = static_cast<std::uint32_t>(st.first);
+    plan.w0[p] = st.w0;
+    plan.w1[p] = st.w1;
+    plan.w2[p] = st.w2;
+    plan.w3[p] = st.w3;
   }
   plan.points_per_revolution = m_points;
   plan.revolutions = revolutions;
@@ -168,10 +293,8 @@ Status SynchronousAverage::Process(std::span<const double> signal,
   // Angular resampling and averaging, accumulated in the forward plan's input.
   std::span<double> average = forward.real_in();
   std::fill(average.begin(), average.end(), 0.0);
-  const double* x = signal.data();
-  const CubicStencil* stencil = plan.stencils.data();
   for (std::size_t r = 0; r < revolutions; ++r) {
-    for (std::size_t m = 0; m < m_points; ++m) average[m] += ApplyCubicStencil(x, *stencil++);
+    Resample({signal.data(), block_length_, &plan, r * m_points, m_points, average.data(), true});
   }
   const double inv_r = 1.0 / static_cast<double>(revolutions);
   for (double& v : average) v *= inv_r;
@@ -237,18 +360,14 @@ Status SynchronousAverage::RevolutionSpread(std::span<const double> signal,
   std::span<std::complex<double>> mean(mean_scratch_.data(), orders);
   std::fill(mean.begin(), mean.end(), std::complex<double>{});
   std::fill(spread.begin(), spread.end(), 0.0);
-  const double* x = signal.data();
-  const CubicStencil* stencil = plan.stencils.data();
   for (std::size_t r = 0; r < plan.revolutions; ++r) {
-    for (std::size_t m = 0; m < m_points; ++m) {
-      revolution[m] = hann_[m * window_step] * ApplyCubicStencil(x, *stencil++);
-    }
+    Resample({signal.data(), block_length_, &plan, r * m_points, m_points, revolution.data(),
+              false});
+    for (std::size_t m = 0; m < m_points; ++m) revolution[m] *= hann_[m * window_step];
     forward.Execute();
-    for (std::size_t k = 0; k < orders; ++k) {
-      const std::complex<double> y = bins[k] * ((k == 0 || k == half) ? edge : interior);
-      mean[k] += y;
-      spread[k] += std::norm(y);  // sum of |Y|^2 for now
-    }
+    // sum of Y and of |Y|^2 for now; DC and order M/2 take the edge scaling.
+    AccumulateOrders(reinterpret_cast<const double*>(bins.data()), orders, half, interior, edge,
+                     reinterpret_cast<double*>(mean.data()), spread.data());
   }
   const double inv_r = 1.0 / static_cast<double>(plan.revolutions);
   for (std::size_t k = 0; k < orders; ++k) {

@@ -1,5 +1,6 @@
 #include "core/inverse/identification_operator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -10,6 +11,7 @@
 #include "core/inverse/parallel_ranges.h"
 #include "core/inverse/small_svd.h"
 #include "core/inverse/validation.h"
+#include "core/common/simd_clones.h"
 
 namespace gearpath {
 namespace {
@@ -28,6 +30,32 @@ Eigen::VectorXd WeightsOrZero(const Eigen::MatrixXcd& a) {
     w(i) = norm > 0.0 ? 1.0 / norm : 0.0;
   }
   return w;
+}
+
+// F = G x over one chunk of the layout (identification_operator.h): per path, the channels'
+// contributions summed over the chunk's bins, which the compiler vectorises. Built for the
+// baseline and, where the CPU has them, AVX2 and AVX-512 (simd_clones.h).
+GEARPATH_SIMD_CLONES
+void ApplyChunk(const double* __restrict g, std::size_t paths, std::size_t channels,
+                const double* __restrict x_re, const double* __restrict x_im,
+                double* __restrict f_re, double* __restrict f_im) noexcept {
+  constexpr std::size_t kBins = IdentificationOperator::kChunkBins;
+  for (std::size_t p = 0; p < paths; ++p) {
+    double re[kBins] = {};
+    double im[kBins] = {};
+    for (std::size_t c = 0; c < channels; ++c) {
+      const double* gr = g + (p * channels + c) * 2 * kBins;
+      const double* gi = gr + kBins;
+      const double* xr = x_re + c * kBins;
+      const double* xi = x_im + c * kBins;
+      for (std::size_t j = 0; j < kBins; ++j) {
+        re[j] += gr[j] * xr[j] - gi[j] * xi[j];
+        im[j] += gr[j] * xi[j] + gi[j] * xr[j];
+      }
+    }
+    std::copy_n(re, kBins, f_re + p * kBins);
+    std::copy_n(im, kBins, f_im + p * kBins);
+  }
 }
 
 std::string BinName(const FrfMatrix& frf, Eigen::Index k) {
@@ -123,16 +151,57 @@ Result<IdentificationOperator> IdentificationOperator::Create(
   const RegularisationRule rule = options.regularisation.rule;
   op.precomputed_ = options.method == InverseMethod::kLeastSquares ||
                     rule == RegularisationRule::kFixed || rule == RegularisationRule::kNoiseFloor;
-  auto bins = std::make_shared<std::vector<Bin>>(frf.at.size());
-  // Each bin depends on its own H only, so the split over threads cannot change any result.
+  const std::size_t count = frf.at.size();
+  auto bins = std::make_shared<std::vector<Bin>>(count);
+  auto layout = std::make_shared<Layout>();
+  const std::size_t chunks = (count + kChunkBins - 1) / kChunkBins;
+  const auto paths = static_cast<std::size_t>(n);
+  const auto channels = static_cast<std::size_t>(m);
+  const std::size_t chunk_size = paths * channels * 2 * kChunkBins;
+  layout->g.assign(chunks * chunk_size, 0.0);
+  layout->outside = m > std::min(m, n);
+  std::vector<BinOperator> residual_rows(count);
+  // Each bin depends on its own H only and writes only its own slots of the layout, so the
+  // split over threads cannot change any result.
   ForEachRangeInParallel(
-      frf.at.size(), ThreadsForRanges(frf.at.size(), kMinBinsPerThread, threads),
+      count, ThreadsForRanges(count, kMinBinsPerThread, threads),
       [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) {
-          (*bins)[k] = BuildBin(frf.at[k], options, op.precomputed_);
+          BinOperator& bo = residual_rows[k];
+          (*bins)[k] = BuildBin(frf.at[k], options, op.precomputed_, &bo);
+          if (!(*bins)[k].has_g) continue;
+          double* g = layout->g.data() + (k / kChunkBins) * chunk_size + k % kChunkBins;
+          for (std::size_t p = 0; p < paths; ++p) {
+            for (std::size_t c = 0; c < channels; ++c) {
+              const Complex v = bo.g(static_cast<Eigen::Index>(p), static_cast<Eigen::Index>(c));
+              double* at = g + (p * channels + c) * 2 * kChunkBins;
+              at[0] = v.real();
+              at[kChunkBins] = v.imag();
+            }
+          }
+          bo.g.resize(0, 0);
         }
       });
+  // The residual rows, bin after bin.
+  std::size_t rows = 0;
+  for (const BinOperator& bo : residual_rows) rows += static_cast<std::size_t>(bo.rows.rows());
+  const std::size_t row_size = 1 + 2 * channels;
+  layout->rows.reserve(rows * row_size);
+  layout->row_begin.reserve(count + 1);
+  layout->row_begin.push_back(0);
+  for (BinOperator& bo : residual_rows) {
+    for (Eigen::Index i = 0; i < bo.rows.rows(); ++i) {
+      layout->rows.push_back(bo.damping(i));
+      for (Eigen::Index c = 0; c < m; ++c) {
+        layout->rows.push_back(bo.rows(i, c).real());
+        layout->rows.push_back(bo.rows(i, c).imag());
+      }
+    }
+    layout->row_begin.push_back(static_cast<std::uint32_t>(layout->rows.size() / row_size));
+    bo = BinOperator{};
+  }
   op.bins_ = std::move(bins);
+  op.layout_ = std::move(layout);
   const Eigen::Index r = std::min(m, n);
   op.beta_.resize(r);
   op.beta2_.resize(r);
@@ -143,13 +212,13 @@ Result<IdentificationOperator> IdentificationOperator::Create(
 }
 
 IdentificationOperator::Bin IdentificationOperator::BuildBin(
-    const Eigen::MatrixXcd& h, const IdentificationOptions& options, bool precomputed) {
+    const Eigen::MatrixXcd& h, const IdentificationOptions& options, bool precomputed,
+    BinOperator* op) {
   const Eigen::Index m = h.rows();
   const Eigen::Index n = h.cols();
   const RegularisationRule rule = options.regularisation.rule;
   const bool mwi = options.method == InverseMethod::kMwi;
   Bin bin;
-  bin.h = h;
   if (mwi) {
     // MWI inverts B = H W^{1/2}, whose singular values are not H's. H^H H, formed anyway for
     // the weights, gives H's condition number where its eigenvalues are accurate enough
@@ -184,17 +253,32 @@ IdentificationOperator::Bin IdentificationOperator::BuildBin(
     if (rule == RegularisationRule::kGcv) bin.outcome = RuleOutcome::kGcvFellBackToNoiseFloor;
   }
   if (precomputed || bin.outcome == RuleOutcome::kGcvFellBackToNoiseFloor) {
-    // G = D V diag(phi / sigma) U^H.
-    Eigen::VectorXd gain(bin.svd.sigma.size());
-    for (Eigen::Index i = 0; i < gain.size(); ++i) {
+    // G = D V diag(phi / sigma) U^H; the residual rows: u_i^H where 1 - phi_i is not
+    // negligible (every one when rows > r, for ||x||^2 - ||U^H x||^2).
+    const Eigen::Index r = bin.svd.sigma.size();
+    const bool outside = m > r;
+    Eigen::VectorXd gain(r);
+    Eigen::VectorXd damping(r);
+    Eigen::Index kept = 0;
+    for (Eigen::Index i = 0; i < r; ++i) {
       const double s = bin.svd.sigma(i);
       const double phi = FilterFactor(options.method, s, bin.parameter, options.iterations,
                                       cutoff);
       gain(i) = phi > 0.0 ? phi / s : 0.0;
+      damping(i) = 1.0 - phi;
+      if (outside || damping(i) > kResidualDamping) ++kept;
     }
-    bin.g = bin.svd.column_scale.asDiagonal() * bin.svd.v * gain.asDiagonal() *
+    op->g = bin.svd.column_scale.asDiagonal() * bin.svd.v * gain.asDiagonal() *
             bin.svd.u.adjoint();
-    // Identify uses g alone from here on; U and V would only hold memory (2 x 2.3 kB per
+    op->damping.resize(kept);
+    op->rows.resize(kept, m);
+    for (Eigen::Index i = 0, j = 0; i < r; ++i) {
+      if (!(outside || damping(i) > kResidualDamping)) continue;
+      op->damping(j) = damping(i);
+      op->rows.row(j++) = bin.svd.u.col(i).adjoint();
+    }
+    bin.has_g = true;
+    // Identify uses G alone from here on; U and V would only hold memory (2 x 2.3 kB per
     // 12 x 12 bin). sigma stays for the figures.
     bin.svd.u.resize(0, 0);
     bin.svd.v.resize(0, 0);
@@ -240,10 +324,28 @@ IdentifyStatus IdentificationOperator::Identify(Eigen::Index bin,
   const Bin& b = (*bins_)[static_cast<std::size_t>(bin)];
   double parameter = b.parameter;
   RuleOutcome outcome = b.outcome;
-  if (b.g.size() > 0) {
-    forces.noalias() = b.g * x;
+  double residual2 = 0.0;
+  // x as split planes with stride 2 (a complex is re, im).
+  const auto* x_re = reinterpret_cast<const double*>(x.data());
+  if (b.has_g) {
+    const auto k = static_cast<std::size_t>(bin);
+    const auto channels = static_cast<std::size_t>(channels_);
+    const double* g = layout_->g.data() +
+                      (k / kChunkBins) * static_cast<std::size_t>(paths_) * channels * 2 *
+                          kChunkBins +
+                      k % kChunkBins;
+    for (Eigen::Index p = 0; p < paths_; ++p) {
+      Complex sum(0.0, 0.0);
+      for (std::size_t c = 0; c < channels; ++c) {
+        const double* at = g + (static_cast<std::size_t>(p) * channels + c) * 2 * kChunkBins;
+        sum += Complex(at[0], at[kChunkBins]) * x(static_cast<Eigen::Index>(c));
+      }
+      forces(p) = sum;
+    }
+    if (figures != nullptr) residual2 = Residual2(bin, x_re, x_re + 1, 2);
   } else if (outcome == RuleOutcome::kZeroOperator) {
     forces.setZero();
+    residual2 = x.squaredNorm();
   } else {
     beta_.noalias() = b.svd.u.adjoint() * x;
     channel_work_ = x;
@@ -258,6 +360,8 @@ IdentifyStatus IdentificationOperator::Identify(Eigen::Index bin,
     }
     path_work_.noalias() = b.svd.v * coefficients_;
     for (Eigen::Index j = 0; j < paths_; ++j) forces(j) = b.svd.column_scale(j) * path_work_(j);
+    residual2 = ResidualNorm2(options_.method, b.svd.sigma, beta2_, outside2, parameter,
+                              options_.iterations);
   }
   if (figures != nullptr) {
     figures->parameter = parameter;
@@ -265,12 +369,70 @@ IdentifyStatus IdentificationOperator::Identify(Eigen::Index bin,
     figures->condition_weighted = b.condition_weighted;
     figures->rank = b.rank;
     figures->outcome = outcome;
-    channel_work_ = x;
-    channel_work_.noalias() -= b.h * forces;
     const double x_norm = x.norm();
-    figures->relative_residual = x_norm > 0.0 ? channel_work_.norm() / x_norm : 0.0;
+    figures->relative_residual = x_norm > 0.0 ? std::sqrt(residual2) / x_norm : 0.0;
   }
   return IdentifyStatus::kOk;
+}
+
+std::size_t IdentificationOperator::chunks() const noexcept {
+  return bins_ ? (bins_->size() + kChunkBins - 1) / kChunkBins : 0;
+}
+
+bool IdentificationOperator::has_operator(Eigen::Index bin) const noexcept {
+  return bin >= 0 && bin < bins() && (*bins_)[static_cast<std::size_t>(bin)].has_g;
+}
+
+void IdentificationOperator::ForcesOfChunk(std::size_t chunk, const double* x_re,
+                                           const double* x_im, double* f_re,
+                                           double* f_im) const noexcept {
+  const auto paths = static_cast<std::size_t>(paths_);
+  const auto channels = static_cast<std::size_t>(channels_);
+  ApplyChunk(layout_->g.data() + chunk * paths * channels * 2 * kChunkBins, paths, channels,
+             x_re, x_im, f_re, f_im);
+}
+
+double IdentificationOperator::Residual2(Eigen::Index bin, const double* x_re,
+                                         const double* x_im, std::size_t stride) noexcept {
+  const Layout& l = *layout_;
+  const auto channels = static_cast<std::size_t>(channels_);
+  const std::size_t row_size = 1 + 2 * channels;
+  const auto k = static_cast<std::size_t>(bin);
+  // With more channels than singular values, e = x - U U^H x, the part of x no force explains,
+  // accumulated as x minus each row's projection (as a vector, not ||x||^2 - ||U^H x||^2,
+  // which would cancel down to sqrt(eps) when x lies nearly in the range of H).
+  const bool outside = l.outside;
+  Complex* e = channel_work_.data();  // this copy's workspace, channels long
+  if (outside) {
+    for (std::size_t c = 0; c < channels; ++c) e[c] = Complex(x_re[c * stride], x_im[c * stride]);
+  }
+  double sum = 0.0;
+  for (std::size_t r = l.row_begin[k]; r < l.row_begin[k + 1]; ++r) {
+    const double* row = l.rows.data() + r * row_size;
+    double re = 0.0;
+    double im = 0.0;
+    for (std::size_t c = 0; c < channels; ++c) {
+      const double ur = row[1 + 2 * c];
+      const double ui = row[2 + 2 * c];
+      const double xr = x_re[c * stride];
+      const double xi = x_im[c * stride];
+      re += ur * xr - ui * xi;
+      im += ur * xi + ui * xr;
+    }
+    sum += row[0] * row[0] * (re * re + im * im);
+    if (outside) {
+      // e -= beta u, with u = conj(row): (re + i im)(ur - i ui).
+      for (std::size_t c = 0; c < channels; ++c) {
+        const double ur = row[1 + 2 * c];
+        const double ui = row[2 + 2 * c];
+        e[c] -= Complex(re * ur + im * ui, im * ur - re * ui);
+      }
+    }
+  }
+  if (outside) {
+    for (std::size_t c = 0; c < channels; ++c) sum += std::norm(e[c]);
+  }
+  return sum;
 }
 
 IdentifyStatus IdentificationOperator::IdentifyAll(const Eigen::Ref<const Eigen::MatrixXcd>& x,

@@ -12,6 +12,20 @@
 // With kGcv or kDiscrepancy the parameter is chosen per block from U^H x (no allocation).
 // Solver forms: spectral_filter.h; rules and why they are well posed: regularisation_rule.h.
 //
+// Layout (issue 9: the per-block pass at memory speed). The G_k of every bin sit in one
+// contiguous array, kChunkBins bins at a time, real and imaginary parts split and the bins
+// innermost: G[chunk][path][channel][re|im][bin of the chunk]. ForcesOfChunk() applies a chunk
+// with loops the compiler vectorises across bins (no per-bin dynamic matrices, no temporaries).
+// The residual needs no mat-vec with H: with B = H D = U diag(sigma) V^H and F = G x,
+// x - H F = U diag(1 - phi) U^H x + (I - U U^H) x, two orthogonal parts, so
+//   ||x - H F||^2 = sum_i (1 - phi_i)^2 |u_i^H x|^2 + ||x - U U^H x||^2,
+// the second term only when there are more channels than singular values (r = min(m, n) < m;
+// then every u_i is kept and x - U U^H x is formed as a vector, without the cancellation of
+// ||x||^2 - ||U^H x||^2). Otherwise only the components whose 1 - phi_i exceeds
+// kResidualDamping carry a row u_i^H (under noise-floor MWI a few per bin): the others add less
+// than kResidualDamping^2 ||x||^2, below the rounding of ||x||^2. It is the residual of F = G x
+// in exact arithmetic; the former x - H (G x) differed from it by the rounding of G x.
+//
 // MWI weight at a bin where a column of H is zero (e.g. accelerance at 0 Hz): the path has no
 // effect there, its force is unobservable and is set to 0 (weight 0), instead of W = 1/0.
 //
@@ -21,6 +35,8 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string_view>
@@ -89,23 +105,56 @@ class IdentificationOperator {
   // The figures of a bin that do not depend on x (parameter for precomputed rules).
   BinFigures StaticFigures(Eigen::Index bin) const;
 
+  // --- The per-block pass over every bin (bins whose G_k is precomputed; all of them when
+  // precomputed()). Bins go kChunkBins at a time; the chunk's responses and forces are split
+  // into real and imaginary planes with the bins innermost: x_re[c * kChunkBins + j] is channel
+  // c at bin chunk * kChunkBins + j, f_re[p * kChunkBins + j] path p's force there. The last
+  // chunk's bins past bins() read zero and give zero force. noexcept, no allocation.
+  static constexpr std::size_t kChunkBins = 16;
+  // 1 - phi_i below which a component carries no residual row (see Layout).
+  static constexpr double kResidualDamping = 1e-9;
+  std::size_t chunks() const noexcept;
+  // F = G x for one chunk (reads the shared operator only).
+  void ForcesOfChunk(std::size_t chunk, const double* x_re, const double* x_im, double* f_re,
+                     double* f_im) const noexcept;
+  // ||x - H G x||^2 at one bin with a precomputed G (Layout), x read as x_re[c * stride].
+  // Uses this copy's workspace (one thread per copy, as Identify).
+  double Residual2(Eigen::Index bin, const double* x_re, const double* x_im,
+                   std::size_t stride) noexcept;
+  // True when bin's G is precomputed (always when precomputed(); with kGcv, where it fell back).
+  bool has_operator(Eigen::Index bin) const noexcept;
+
  private:
   struct Bin {
-    Eigen::MatrixXcd h;
-    ScaledSvd svd;       // u and v are released where g is built (Identify uses g alone)
-    Eigen::MatrixXcd g;  // paths x channels, only when precomputed_
+    ScaledSvd svd;  // u and v are released where G is precomputed (Identify uses G alone)
     double parameter = 0.0;
     double condition_h = 0.0;
     double condition_weighted = 0.0;
     Eigen::Index rank = 0;
     RuleOutcome outcome = RuleOutcome::kAsConfigured;
+    bool has_g = false;  // G of this bin is in Layout::g
+  };
+  // What a bin's build hands to the layout (then dropped).
+  struct BinOperator {
+    Eigen::MatrixXcd g;         // paths x channels; empty when not precomputed
+    Eigen::VectorXd damping;    // 1 - phi_i of the residual rows
+    Eigen::MatrixXcd rows;      // their u_i^H, one per row (rows x channels)
+  };
+  // The contiguous per-block data (see Layout in the header comment).
+  struct Layout {
+    std::vector<double> g;  // chunks x paths x channels x 2 x kChunkBins
+    // Residual rows of bin k: row_begin[k] .. row_begin[k + 1], each 1 + 2 channels doubles
+    // (1 - phi_i, then u_i^H as re, im per channel).
+    std::vector<std::uint32_t> row_begin;
+    std::vector<double> rows;
+    bool outside = false;  // channels > min(channels, paths): add ||x||^2 - ||U^H x||^2
   };
 
   IdentificationOperator() = default;
   // Everything Create computes for one bin: one SVD of the inverted operator and, for MWI,
   // H's condition number from H^H H. Depends on h and the options only.
   static Bin BuildBin(const Eigen::MatrixXcd& h, const IdentificationOptions& options,
-                      bool precomputed);
+                      bool precomputed, BinOperator* op);
   double ChooseParameter(const Bin& bin, double outside2, RuleOutcome* outcome) noexcept;
 
   IdentificationOptions options_;
@@ -114,6 +163,7 @@ class IdentificationOperator {
   bool precomputed_ = false;
   // Shared between copies, never written after Create (see Thread safety).
   std::shared_ptr<const std::vector<Bin>> bins_;
+  std::shared_ptr<const Layout> layout_;
   // Per-block workspace, sized once; each copy has its own.
   Eigen::VectorXcd beta_;
   Eigen::VectorXd beta2_;

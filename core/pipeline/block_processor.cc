@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <exception>
@@ -135,6 +136,40 @@ struct Shape {
   std::uint64_t last_used = 0;
 };
 
+// Entries of BlockProcessor::stage_times() before the stages' own.
+constexpr std::size_t kValidationTime = 0;
+constexpr std::size_t kConfigureTime = 1;
+constexpr std::size_t kFirstStageTime = 2;
+constexpr std::size_t kMaxStageTimes = 16;
+
+// The optional per-part timing of Process() (BlockProcessor::set_stage_timing).
+class StageClock {
+ public:
+  using Clock = std::chrono::steady_clock;
+  explicit StageClock(std::array<StageTime, kMaxStageTimes>* times) noexcept
+      : times_(times), last_(times ? Clock::now() : Clock::time_point{}) {}
+  // Charges the time since the previous lap (or the start) to entry `i`; `more` adds it to the
+  // entry's time in this block instead of counting a new block.
+  void Lap(std::size_t i, bool more = false) noexcept {
+    if (times_ == nullptr) return;
+    const Clock::time_point now = Clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    StageTime& t = (*times_)[i];
+    if (more) {
+      t.last_s += s;
+    } else {
+      ++t.blocks;
+      t.last_s = s;
+    }
+    t.total_s += s;
+    last_ = now;
+  }
+
+ private:
+  std::array<StageTime, kMaxStageTimes>* times_;
+  Clock::time_point last_;
+};
+
 struct BlockProcessor::Impl {
   MachineContext machine;
   MachineState state;
@@ -142,6 +177,9 @@ struct BlockProcessor::Impl {
   std::vector<std::unique_ptr<Shape>> shapes;  // at most kMaxShapes
   Shape* last_shape = nullptr;                 // shape of the last accepted block
   std::uint64_t use_counter = 0;
+  bool timing = false;
+  std::array<StageTime, kMaxStageTimes> times{};
+  std::size_t time_entries = 0;
 
   Shape* FindShape(std::size_t n) const noexcept {
     for (const auto& s : shapes) {
@@ -202,6 +240,13 @@ Result<BlockProcessor> BlockProcessor::Create(MachineSetup setup) {
   impl->fingerprint = LearnedStateFingerprint(impl->machine);
   if (Status st = DropOwnDecoupledCopy(impl->machine.setup); !st) return Error{st.error()};
   impl->shapes.reserve(kMaxShapes);
+  impl->times[kValidationTime].stage = "validation";
+  impl->times[kConfigureTime].stage = "configure";
+  impl->time_entries = kFirstStageTime;
+  for (const auto& stage : MakeStages()) {  // names are string literals: the views stay valid
+    if (impl->time_entries == kMaxStageTimes) break;
+    impl->times[impl->time_entries++].stage = stage->name();
+  }
   return BlockProcessor(std::move(impl));
 }
 
@@ -228,7 +273,9 @@ bool BlockProcessor::configured_for(std::uint32_t samples_per_channel) const noe
 ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult& out) noexcept {
   ProcessOutcome outcome;
   Impl& im = *impl_;
+  StageClock clock(im.timing ? &im.times : nullptr);
   outcome.reason = ValidateBlock(block, im.machine.expect, outcome.message);
+  clock.Lap(kValidationTime);
   if (!outcome.accepted()) return outcome;
 
   // The first block of a new length configures its shape (Prepare() does it ahead of time).
@@ -250,6 +297,7 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
       return outcome;
     }
     shape = im.FindShape(n);
+    clock.Lap(kConfigureTime);
   }
   const SequenceTracker::Verdict seq =
       im.state.tracker.Observe(block.sequence, im.machine.expect.machine_id, outcome.message);
@@ -273,10 +321,12 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
   out.criterion = m.setup.options.criterion;
   out.analysis_band_lo_hz = m.band_lo;
   out.analysis_band_hi_hz = m.band_hi;
+  clock.Lap(kValidationTime, /*more=*/true);  // the sequence and the result's bookkeeping
 
   StageContext ctx{m, im.state, shape->work, block, out, outcome.message};
-  for (auto& stage : shape->stages) {
-    const RejectReason reason = stage->Process(ctx);
+  for (std::size_t i = 0; i < shape->stages.size(); ++i) {
+    const RejectReason reason = shape->stages[i]->Process(ctx);
+    if (kFirstStageTime + i < kMaxStageTimes) clock.Lap(kFirstStageTime + i);
     if (reason != RejectReason::kNone) {
       outcome.reason = reason;
       return outcome;
@@ -292,8 +342,8 @@ std::span<const double> BlockProcessor::DominantPathSignal(std::size_t channel) 
       channel >= im.machine.channels) {
     return {};
   }
-  const BlockWorkspace& w = im.last_shape->work;
-  return std::span<const double>(w.dominant_time).subspan(channel * w.n, w.n);
+  BlockWorkspace& w = im.last_shape->work;  // made on the first call after a block
+  return std::span<const double>(w.DominantTime()).subspan(channel * w.n, w.n);
 }
 
 bool BlockProcessor::PathSignal(std::size_t path, std::size_t channel,
@@ -436,6 +486,19 @@ std::uint64_t BlockProcessor::learned_state_fingerprint() const noexcept {
 const MachineSetup& BlockProcessor::setup() const noexcept { return impl_->machine.setup; }
 const BlockExpectations& BlockProcessor::expectations() const noexcept {
   return impl_->machine.expect;
+}
+
+void BlockProcessor::set_stage_timing(bool on) noexcept { impl_->timing = on; }
+bool BlockProcessor::stage_timing() const noexcept { return impl_->timing; }
+std::span<const StageTime> BlockProcessor::stage_times() const noexcept {
+  return {impl_->times.data(), impl_->time_entries};
+}
+void BlockProcessor::ResetStageTimes() noexcept {
+  for (StageTime& t : impl_->times) {
+    t.blocks = 0;
+    t.last_s = 0.0;
+    t.total_s = 0.0;
+  }
 }
 
 }  // namespace gearpath

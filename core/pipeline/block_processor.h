@@ -294,6 +294,17 @@ struct BlockResult {
   BlockRegularisation regularisation;
 };
 
+// Wall time (steady_clock) of one part of Process(), for benchmarks and diagnostics
+// (BlockProcessor::set_stage_timing). The parts, in order: "validation" (block checks and the
+// sequence), "configure" (the first block of a new shape only), then one entry per stage
+// ("spectra", "speed", "identification", ..., "alarm"; pipeline_stage.h).
+struct StageTime {
+  std::string_view stage;
+  std::uint64_t blocks = 0;  // times this part ran since the last reset
+  double last_s = 0.0;       // its time in the last block that ran it
+  double total_s = 0.0;      // summed over those blocks
+};
+
 struct ProcessOutcome {
   RejectReason reason = RejectReason::kNone;
   MessageText message;  // empty when accepted
@@ -323,7 +334,9 @@ class BlockProcessor {
 
   // Time signal (length samples_per_channel of the last accepted block) of the dominant
   // path's contribution at FRF row `channel`, from the last accepted block. Empty before the
-  // first accepted block or for an invalid channel. Valid until the next Process().
+  // first accepted block or for an invalid channel. Valid until the next Process(). The first
+  // call after a block makes every channel's signal (no stage needs them: Process() does not);
+  // like Process(), not to be called concurrently on one instance. Allocation-free.
   std::span<const double> DominantPathSignal(std::size_t channel) const noexcept;
 
   // Time signal of any path's contribution at FRF row `channel` for the last accepted block,
@@ -358,6 +371,14 @@ class BlockProcessor {
 
   const MachineSetup& setup() const noexcept;
   const BlockExpectations& expectations() const noexcept;
+
+  // Per-stage timing of Process(): off by default (no clock is read). On, every Process() reads
+  // steady_clock once per part (StageTime) and allocates nothing. stage_times() lists every part
+  // in pipeline order; ResetStageTimes() zeroes the counts and sums.
+  void set_stage_timing(bool on) noexcept;
+  bool stage_timing() const noexcept;
+  std::span<const StageTime> stage_times() const noexcept;
+  void ResetStageTimes() noexcept;
 
  private:
   struct Impl;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "core/common/simd_clones.h"
 #include "core/pipeline/shared_frf_operators.h"
 
 namespace gearpath {
@@ -18,6 +19,13 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
                                       : MapFrfToBlockGrid(machine.setup.frf_set.decoupled, n, fs);
   if (!map) return Error{map.error()};
   w.map = std::move(map.value());
+  if (machine.setup.shared_frf) {
+    auto table = machine.setup.shared_frf->Power(n, fs);
+    if (!table) return Error{table.error()};
+    w.frf_table = std::move(table.value());
+  } else {
+    w.frf_table = std::make_shared<const FrfPowerTable>(FrfPowerTable::Build(w.map));
+  }
   auto inverse = InverseSpectrum::Create(n, 1);
   if (!inverse) return Error{inverse.error()};
   w.inverse.emplace(std::move(inverse.value()));
@@ -28,7 +36,11 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   w.time.assign(channels * n, 0.0);
   w.spec.assign(channels * w.bins, Cd{});
   w.meshes = machine.unit_meshes;
-  w.forces = Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(paths), in_range);
+  if (w.frf_table->paths != paths || w.frf_table->channels != channels ||
+      w.frf_table->bins != static_cast<std::size_t>(in_range)) {
+    return Error{"the FRF tables do not match the machine's FRF shape"};
+  }
+  w.forces.setZero(static_cast<Eigen::Index>(paths), in_range);
   w.band_mask.assign(w.bins, 0);
   for (std::size_t k = 0; k < w.bins; ++k) {
     const double f = static_cast<double>(k) * w.bin_hz;
@@ -36,6 +48,8 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   }
   w.sideband_mask.assign(w.bins, 0);
   w.mesh_mask.assign(w.bins, 0);
+  w.path_channel_energy.assign(paths * channels, 0.0);
+  w.path_sideband_energy.assign(paths, 0.0);
   w.path_energy.assign(paths, 0.0);
   w.path_share.assign(paths, 0.0);
   w.path_criterion.assign(paths, 0.0);
@@ -61,15 +75,47 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   return w;
 }
 
+namespace {
+
+// out[i] = h[i] f[i] over n complex values given as interleaved (re, im) doubles.
+GEARPATH_SIMD_CLONES
+void MultiplyComplex(const double* __restrict h, const double* __restrict f,
+                     double* __restrict out, std::size_t n) noexcept {
+  for (std::size_t i = 0; i < n; ++i) {
+    const double hr = h[2 * i];
+    const double hi = h[2 * i + 1];
+    const double fr = f[2 * i];
+    const double fi = f[2 * i + 1];
+    out[2 * i] = hr * fr - hi * fi;
+    out[2 * i + 1] = hr * fi + hi * fr;
+  }
+}
+
+}  // namespace
+
 void BlockWorkspace::Contribution(std::size_t path, std::size_t channel,
                                   std::span<Cd> out) const noexcept {
-  std::fill(out.begin(), out.end(), Cd{});
-  const auto p = static_cast<Eigen::Index>(path);
-  const auto c = static_cast<Eigen::Index>(channel);
-  for (Eigen::Index i = 0; i < map.frf.bins(); ++i) {
-    out[map.first_bin + static_cast<std::size_t>(i)] =
-        map.frf.at[static_cast<std::size_t>(i)](c, p) * forces(p, i);
+  const std::size_t in_range = frf_table->bins;
+  std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(map.first_bin), Cd{});
+  std::fill(out.begin() + static_cast<std::ptrdiff_t>(map.first_bin + in_range), out.end(), Cd{});
+  MultiplyComplex(reinterpret_cast<const double*>(frf_table->Response(path, channel)),
+                  reinterpret_cast<const double*>(forces.data() + path * in_range),
+                  reinterpret_cast<double*>(out.data() + map.first_bin), in_range);
+}
+
+const std::vector<double>& BlockWorkspace::DominantTime() noexcept {
+  if (dominant_time_ready) return dominant_time;
+  const std::size_t channels = dominant_time.size() / n;
+  if (dominant >= 0) {
+    for (std::size_t c = 0; c < channels; ++c) {
+      Contribution(static_cast<std::size_t>(dominant), c, one_spec);
+      (void)inverse->Process(one_spec, std::span<double>(dominant_time).subspan(c * n, n));
+    }
+  } else {
+    std::fill(dominant_time.begin(), dominant_time.end(), 0.0);
   }
+  dominant_time_ready = true;
+  return dominant_time;
 }
 
 }  // namespace gearpath

@@ -3,7 +3,8 @@
 // reused block after block, so processing allocates nothing.
 //
 // Layouts: time signals are FRF-row major (row r occupies [r n, (r + 1) n)); spectra are
-// FRF-row major over bins (n/2 + 1 per row); forces are paths x in-range bins.
+// FRF-row major over bins (n/2 + 1 per row); forces are paths x in-range bins, row-major (each
+// path's force contiguous over the bins).
 #pragma once
 
 #include <Eigen/Dense>
@@ -11,13 +12,16 @@
 #include <complex>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "core/common/accel_block.h"
 #include "core/diagnosis/dominant_path.h"
 #include "core/dsp/spectrum.h"
 #include "core/pipeline/frf_grid_mapping.h"
+#include "core/pipeline/frf_power_table.h"
 #include "core/pipeline/machine_context.h"
 
 namespace gearpath {
@@ -30,6 +34,9 @@ struct BlockWorkspace {
   std::size_t bins = 0;  // n/2 + 1
   double bin_hz = 0.0;
   FrfGridMapping map;  // the FRF set on this shape's bin grid (in-range bins only)
+  // |H|^2 and H per (path, channel) over the in-range bins; shared by every machine on a shared
+  // FRF set (SharedFrfOperators::Power).
+  std::shared_ptr<const FrfPowerTable> frf_table;
 
   // --- Shared plans ---
   std::optional<InverseSpectrum> inverse;  // one channel, any stage may use it
@@ -41,11 +48,18 @@ struct BlockWorkspace {
   SpeedSource speed_source = SpeedSource::kUnknown;
   std::vector<MeshLines> meshes;  // every mesh at this block's speed
 
-  Eigen::MatrixXcd forces;  // paths x in-range bins: identified bearing forces
+  // paths x in-range bins: identified bearing forces.
+  Eigen::Matrix<Cd, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> forces;
 
   std::vector<std::uint8_t> band_mask;      // bins: analysis band and inside the FRF range
   std::vector<std::uint8_t> sideband_mask;  // bins: mesh sideband lines (criterion)
   std::vector<std::uint8_t> mesh_mask;      // bins: mesh harmonics
+
+  // Filled in the identification pass: per (path, FRF row), path-major, the contribution
+  // energy over the analysis band; per path, its energy on the mesh sideband lines (summed
+  // over the rows).
+  std::vector<double> path_channel_energy;
+  std::vector<double> path_sideband_energy;
 
   std::vector<double> path_energy;     // per path: analysis-band contribution energy
   std::vector<double> path_share;      // per path: energy share
@@ -54,7 +68,10 @@ struct BlockWorkspace {
 
   int dominant = -1;                 // dominant path; -1 = none
   std::size_t indicator_channel = 0;  // FRF row of the raw / reconstructed indicator
-  std::vector<double> dominant_time;  // channels x n: the dominant path's contribution in time
+  // channels x n: the dominant path's contribution in time, made only when asked for
+  // (BlockProcessor::DominantPathSignal; no stage reads it): DominantTime().
+  std::vector<double> dominant_time;
+  bool dominant_time_ready = false;  // reset by each block
 
   // Condition indicators (machine.condition_slots layout, then the envelope indicators).
   std::vector<double> indicators;          // machine.indicator_count values
@@ -94,6 +111,10 @@ struct BlockWorkspace {
   // Contribution spectrum of `path` at FRF row `channel`: H_cp F_p on in-range bins, 0
   // elsewhere (seed Eq. 45). noexcept, allocation-free.
   void Contribution(std::size_t path, std::size_t channel, std::span<Cd> out) const noexcept;
+
+  // dominant_time, made on the first call after a block (12 contributions and inverse FFTs at
+  // the reference workload, which no stage needs). noexcept, allocation-free.
+  const std::vector<double>& DominantTime() noexcept;
 };
 
 }  // namespace gearpath

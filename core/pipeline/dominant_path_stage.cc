@@ -79,16 +79,8 @@ RejectReason DominantPathStage::Process(StageContext& ctx) noexcept {
     out.paths[p].criterion = w.path_criterion[p];
   }
 
-  // The dominant path's contribution in time, at every channel (kept for the accessor).
-  if (dominant >= 0) {
-    for (std::size_t c = 0; c < m.channels; ++c) {
-      w.Contribution(static_cast<std::size_t>(dominant), c, w.one_spec);
-      (void)w.inverse->Process(w.one_spec,
-                               std::span<double>(w.dominant_time).subspan(c * w.n, w.n));
-    }
-  } else {
-    std::fill(w.dominant_time.begin(), w.dominant_time.end(), 0.0);
-  }
+  // Its contribution in time at every channel is made only if asked for (DominantTime()).
+  w.dominant_time_ready = false;
   w.indicator_channel =
       dominant >= 0
           ? static_cast<std::size_t>(w.best_channel[static_cast<std::size_t>(dominant)])

@@ -36,9 +36,15 @@ RejectReason EnvelopeStage::Process(StageContext& ctx) noexcept {
   const MachineContext& m = ctx.machine;
   const bool remove = m.setup.options.remove_mesh_tones;
   const std::size_t channel = w.indicator_channel;
-  std::copy_n(w.spec.begin() + static_cast<std::ptrdiff_t>(channel * w.bins), w.bins,
-              w.one_spec.begin());
-  ToTime(w, remove, w.raw_signal);
+  if (remove) {
+    std::copy_n(w.spec.begin() + static_cast<std::ptrdiff_t>(channel * w.bins), w.bins,
+                w.one_spec.begin());
+    ToTime(w, remove, w.raw_signal);
+  } else {
+    // The measured channel itself (its spectrum's inverse transform, less the rounding).
+    std::copy_n(w.time.begin() + static_cast<std::ptrdiff_t>(channel * w.n), w.n,
+                w.raw_signal.begin());
+  }
   if (w.dominant >= 0) {
     w.Contribution(static_cast<std::size_t>(w.dominant), channel, w.one_spec);
   } else {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "core/common/simd_clones.h"
 #include "core/pipeline/block_workspace.h"
 #include "core/pipeline/machine_context.h"
 #include "core/pipeline/shared_frf_operators.h"
@@ -11,12 +12,47 @@
 namespace gearpath {
 namespace {
 
+constexpr std::size_t kChunk = IdentificationOperator::kChunkBins;
+
 // Median of the first n values of `v` (reorders them). 0 for n == 0.
 double MedianInPlace(std::vector<double>& v, std::size_t n) noexcept {
   if (n == 0) return 0.0;
   const auto mid = v.begin() + static_cast<std::ptrdiff_t>(n / 2);
   std::nth_element(v.begin(), mid, v.begin() + static_cast<std::ptrdiff_t>(n));
   return *mid;
+}
+
+// Per (path, FRF row) and bin of the chunk: band[pc][j] += |H_cp|^2 |F_p|^2 on the band bins,
+// side[pc][j] the same on the sideband lines. Element-wise over the chunk's bins (the sums over
+// the bins are taken once per block), so the compiler vectorises it without reordering a sum.
+// `power` is the |H|^2 table at the chunk's first bin (rows `stride` apart), `count` the chunk's
+// bins, `band_weight`/`side_weight` 1 or 0 per bin.
+GEARPATH_SIMD_CLONES
+void AccumulateEnergies(const float* power, std::size_t stride, std::size_t paths,
+                        std::size_t channels, std::size_t count, const double* __restrict f_re,
+                        const double* __restrict f_im, const double* __restrict band_weight,
+                        const double* __restrict side_weight, double* __restrict band,
+                        double* __restrict side) noexcept {
+  for (std::size_t p = 0; p < paths; ++p) {
+    double f2_band[kChunk];
+    double f2_side[kChunk];
+    for (std::size_t j = 0; j < count; ++j) {
+      const double re = f_re[p * kChunk + j];
+      const double im = f_im[p * kChunk + j];
+      f2_band[j] = band_weight[j] * (re * re + im * im);
+      f2_side[j] = side_weight[j] * f2_band[j];
+    }
+    for (std::size_t c = 0; c < channels; ++c) {
+      const float* row = power + (p * channels + c) * stride;
+      double* b = band + (p * channels + c) * kChunk;
+      double* s = side + (p * channels + c) * kChunk;
+      for (std::size_t j = 0; j < count; ++j) {
+        const double h2 = static_cast<double>(row[j]);
+        b[j] += h2 * f2_band[j];
+        s[j] += h2 * f2_side[j];
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -29,49 +65,170 @@ Status IdentificationStage::Configure(const MachineContext& machine, BlockWorksp
                 : IdentificationOperator::Create(*work.map.in_range, options);
   if (!op) return Error{"identification operator: " + op.error()};
   op_.emplace(std::move(op.value()));
+  table_ = work.frf_table.get();
   const auto in_range = static_cast<std::size_t>(work.map.frf.bins());
+  if (static_cast<std::size_t>(op_->bins()) != in_range || table_ == nullptr ||
+      table_->bins != in_range) {
+    return Error{"identification operator: does not match the block's in-range bins"};
+  }
+  x_re_.assign(machine.channels * kChunk, 0.0);
+  x_im_.assign(machine.channels * kChunk, 0.0);
+  f_re_.assign(machine.paths * kChunk, 0.0);
+  f_im_.assign(machine.paths * kChunk, 0.0);
+  band_acc_.assign(machine.paths * machine.channels * kChunk, 0.0);
+  side_acc_.assign(machine.paths * machine.channels * kChunk, 0.0);
   x_ = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(machine.channels));
+  forces_ = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(machine.paths));
   alpha_.assign(in_range, 0.0);
   condition_.assign(in_range, 0.0);
+  if (op_->precomputed()) {
+    // The figures do not depend on the block (every bin of a validated, finite block is
+    // identified): their medians once, here.
+    std::size_t used = 0;
+    double cond_max = 0.0;
+    for (std::size_t i = 0; i < in_range; ++i) {
+      const BinFigures fig = op_->StaticFigures(static_cast<Eigen::Index>(i));
+      if (std::isfinite(fig.parameter) && std::isfinite(fig.condition_weighted)) {
+        alpha_[used] = fig.parameter;
+        condition_[used] = fig.condition_weighted;
+        cond_max = std::max(cond_max, fig.condition_weighted);
+        ++used;
+      }
+    }
+    static_alpha_median_ = MedianInPlace(alpha_, used);
+    static_condition_median_ = MedianInPlace(condition_, used);
+    static_condition_max_ = cond_max;
+  }
   return Status::Ok();
+}
+
+void IdentificationStage::IdentifyChunkPerBin(BlockWorkspace& w, std::size_t chunk,
+                                              std::size_t count) noexcept {
+  const auto channels = static_cast<std::size_t>(x_.size());
+  const auto paths = static_cast<std::size_t>(forces_.size());
+  for (std::size_t j = 0; j < count; ++j) {
+    const auto i = static_cast<Eigen::Index>(chunk * kChunk + j);
+    double x2 = 0.0;
+    for (std::size_t c = 0; c < channels; ++c) {
+      const BlockWorkspace::Cd v(x_re_[c * kChunk + j], x_im_[c * kChunk + j]);
+      x_[static_cast<Eigen::Index>(c)] = v;
+      x2 += std::norm(v);
+    }
+    BinFigures fig;  // read in this bin only: Identify() sets every field
+    if (op_->Identify(i, x_, forces_, &fig) != IdentifyStatus::kOk) {
+      forces_.setZero();
+    } else {
+      if (w.band_mask[w.map.first_bin + static_cast<std::size_t>(i)]) {
+        residual_ += fig.relative_residual * fig.relative_residual * x2;
+      }
+      if (std::isfinite(fig.parameter) && std::isfinite(fig.condition_weighted)) {
+        alpha_[used_] = fig.parameter;
+        condition_[used_] = fig.condition_weighted;
+        cond_max_ = std::max(cond_max_, fig.condition_weighted);
+        ++used_;
+      }
+    }
+    for (std::size_t p = 0; p < paths; ++p) {
+      f_re_[p * kChunk + j] = forces_[static_cast<Eigen::Index>(p)].real();
+      f_im_[p * kChunk + j] = forces_[static_cast<Eigen::Index>(p)].imag();
+    }
+  }
 }
 
 RejectReason IdentificationStage::Process(StageContext& ctx) noexcept {
   BlockWorkspace& w = ctx.work;
   const std::size_t channels = ctx.machine.channels;
-  const Eigen::Index in_range = w.map.frf.bins();
-  double res_num = 0.0;
-  double res_den = 0.0;
-  std::size_t used = 0;
-  double cond_max = 0.0;
-  for (Eigen::Index i = 0; i < in_range; ++i) {
-    const std::size_t k = w.map.first_bin + static_cast<std::size_t>(i);
-    double x2 = 0.0;
+  const std::size_t paths = ctx.machine.paths;
+  const auto in_range = static_cast<std::size_t>(w.map.frf.bins());
+  const std::size_t first = w.map.first_bin;
+  const bool batched = op_->precomputed();
+  std::fill(band_acc_.begin(), band_acc_.end(), 0.0);
+  std::fill(side_acc_.begin(), side_acc_.end(), 0.0);
+  residual_ = 0.0;
+  used_ = 0;
+  cond_max_ = 0.0;
+  double response = 0.0;  // sum of ||x||^2 over the band bins
+  for (std::size_t chunk = 0; chunk < op_->chunks(); ++chunk) {
+    const std::size_t b0 = chunk * kChunk;
+    const std::size_t count = std::min(kChunk, in_range - b0);
+    // Responses, split; the last chunk's missing bins read zero.
     for (std::size_t c = 0; c < channels; ++c) {
-      x_[static_cast<Eigen::Index>(c)] = w.spec[c * w.bins + k];
-      x2 += std::norm(w.spec[c * w.bins + k]);
+      const BlockWorkspace::Cd* s = w.spec.data() + c * w.bins + first + b0;
+      double* re = x_re_.data() + c * kChunk;
+      double* im = x_im_.data() + c * kChunk;
+      for (std::size_t j = 0; j < count; ++j) {
+        re[j] = s[j].real();
+        im[j] = s[j].imag();
+      }
+      std::fill(re + count, re + kChunk, 0.0);
+      std::fill(im + count, im + kChunk, 0.0);
     }
-    BinFigures fig;  // read in this bin only: Identify() sets every field
-    if (op_->Identify(i, x_, w.forces.col(i), &fig) != IdentifyStatus::kOk) {
-      w.forces.col(i).setZero();
-      continue;
+    bool any_band = false;
+    for (std::size_t j = 0; j < kChunk; ++j) {
+      const bool in_band = j < count && w.band_mask[first + b0 + j] != 0;
+      band_[j] = in_band ? 1.0 : 0.0;
+      side_[j] = in_band && w.sideband_mask[first + b0 + j] != 0 ? 1.0 : 0.0;
+      any_band = any_band || in_band;
     }
-    if (w.band_mask[k]) {
-      res_num += fig.relative_residual * fig.relative_residual * x2;
-      res_den += x2;
+    if (batched) {
+      op_->ForcesOfChunk(chunk, x_re_.data(), x_im_.data(), f_re_.data(), f_im_.data());
+      for (std::size_t j = 0; j < count && any_band; ++j) {
+        if (band_[j] != 0.0) {
+          residual_ += op_->Residual2(static_cast<Eigen::Index>(b0 + j), x_re_.data() + j,
+                                      x_im_.data() + j, kChunk);
+        }
+      }
+    } else {
+      IdentifyChunkPerBin(w, chunk, count);
     }
-    if (std::isfinite(fig.parameter) && std::isfinite(fig.condition_weighted)) {
-      alpha_[used] = fig.parameter;
-      condition_[used] = fig.condition_weighted;
-      cond_max = std::max(cond_max, fig.condition_weighted);
-      ++used;
+    for (std::size_t j = 0; j < count && any_band; ++j) {
+      if (band_[j] == 0.0) continue;
+      double x2 = 0.0;
+      for (std::size_t c = 0; c < channels; ++c) {
+        const double re = x_re_[c * kChunk + j];
+        const double im = x_im_[c * kChunk + j];
+        x2 += re * re + im * im;
+      }
+      response += x2;
+    }
+    for (std::size_t p = 0; p < paths; ++p) {
+      BlockWorkspace::Cd* dst = w.forces.data() + p * in_range + b0;
+      for (std::size_t j = 0; j < count; ++j) {
+        dst[j] = {f_re_[p * kChunk + j], f_im_[p * kChunk + j]};
+      }
+    }
+    if (any_band) {
+      AccumulateEnergies(table_->Row(0, 0) + b0, in_range, paths, channels, count,
+                         f_re_.data(), f_im_.data(), band_.data(), side_.data(),
+                         band_acc_.data(), side_acc_.data());
     }
   }
+  // Each (path, row)'s energies: the per-bin partial sums of the chunks, summed.
+  for (std::size_t p = 0; p < paths; ++p) {
+    double side = 0.0;
+    for (std::size_t c = 0; c < channels; ++c) {
+      const double* b = band_acc_.data() + (p * channels + c) * kChunk;
+      const double* s = side_acc_.data() + (p * channels + c) * kChunk;
+      double band = 0.0;
+      for (std::size_t j = 0; j < kChunk; ++j) {
+        band += b[j];
+        side += s[j];
+      }
+      w.path_channel_energy[p * channels + c] = band;
+    }
+    w.path_sideband_energy[p] = side;
+  }
   BlockRegularisation& reg = ctx.out.regularisation;
-  reg.alpha_median = MedianInPlace(alpha_, used);
-  reg.condition_median = MedianInPlace(condition_, used);
-  reg.condition_max = cond_max;
-  reg.relative_residual = res_den > 0.0 ? std::sqrt(res_num / res_den) : 0.0;
+  if (batched) {
+    reg.alpha_median = static_alpha_median_;
+    reg.condition_median = static_condition_median_;
+    reg.condition_max = static_condition_max_;
+  } else {
+    reg.alpha_median = MedianInPlace(alpha_, used_);
+    reg.condition_median = MedianInPlace(condition_, used_);
+    reg.condition_max = cond_max_;
+  }
+  reg.relative_residual = response > 0.0 ? std::sqrt(residual_ / response) : 0.0;
   reg.bins_used = static_cast<std::uint32_t>(in_range);
   reg.bins_outside_frf = static_cast<std::uint32_t>(w.map.bins_outside);
   return RejectReason::kNone;

@@ -4,13 +4,12 @@
 // dominant-path criterion, docs/diagnosis.md), and the FRF row where its contribution is
 // largest (its indicator channel).
 //
-// Since |H F|^2 = |H|^2 |F|^2, the FRF's power |H_cj|^2 is laid out once per block shape
-// (frf_power_table.h; one table for every machine on a shared FRF set), and each block costs
-// two dot products per (path, channel) instead of a walk over the per-bin FRF matrices.
+// Since |H F|^2 = |H|^2 |F|^2, the energies are sums of |H_cj|^2 (frf_power_table.h, laid out
+// once per block shape and shared by every machine on a shared FRF set) times |F_j|^2; the
+// identification stage accumulates them in its pass over the bins, while the forces are in
+// cache (BlockWorkspace::path_channel_energy, path_sideband_energy). This stage turns them into
+// the published energies, shares, criterion and indicator channels.
 #pragma once
-
-#include <memory>
-#include <vector>
 
 #include "core/pipeline/frf_power_table.h"
 #include "core/pipeline/pipeline_stage.h"
@@ -24,12 +23,10 @@ class PathEnergyStage final : public PipelineStage {
   RejectReason Process(StageContext& ctx) noexcept override;
 
   // The |H|^2 table in use (tests: machines on one shared FRF set hold the same one).
-  const FrfPowerTable* frf_power() const noexcept { return frf_power_.get(); }
+  const FrfPowerTable* frf_power() const noexcept { return frf_power_; }
 
  private:
-  std::shared_ptr<const FrfPowerTable> frf_power_;  // read-only, maybe shared
-  std::vector<double> band_force_;      // in-range bins: |F_j|^2 inside the analysis band
-  std::vector<double> sideband_force_;  // in-range bins: |F_j|^2 on the sideband lines
+  const FrfPowerTable* frf_power_ = nullptr;  // the workspace's (BlockWorkspace::frf_table)
 };
 
 }  // namespace gearpath

@@ -1,7 +1,10 @@
 #include "core/pipeline/speed_stage.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
+#include "core/diagnosis/dominant_path.h"
 #include "core/diagnosis/speed_estimate.h"
 #include "core/pipeline/block_workspace.h"
 #include "core/pipeline/machine_context.h"
@@ -51,6 +54,16 @@ RejectReason SpeedStage::Process(StageContext& ctx) noexcept {
     const MeshLines& unit = ctx.machine.unit_meshes[m];
     w.meshes[m].mesh_hz = unit.mesh_hz * speed;
     w.meshes[m].shaft_hz = {unit.shaft_hz[0] * speed, unit.shaft_hz[1] * speed};
+  }
+  // The lines of this block's meshes (read from the identification pass on: the dominant-path
+  // criterion's sidebands, the mesh tones).
+  if (speed > 0.0) {
+    BuildSidebandMask(w.bin_hz, w.meshes, o.sideband_orders, ctx.machine.band_lo,
+                      ctx.machine.band_hi, 1.0, w.sideband_mask);
+    BuildMeshHarmonicMask(w.bin_hz, w.meshes, 1.0, w.mesh_mask);
+  } else {
+    std::fill(w.sideband_mask.begin(), w.sideband_mask.end(), std::uint8_t{0});
+    std::fill(w.mesh_mask.begin(), w.mesh_mask.end(), std::uint8_t{0});
   }
   return RejectReason::kNone;
 }

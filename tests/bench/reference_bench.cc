@@ -7,121 +7,28 @@
 // the cost of making the machine ready: Create + Prepare (per-bin operators, plans, buffers).
 // Run: ./build/tests/bench/bench_reference
 //
-// The FRF set is synthetic (a few random housing modes per channel-path pair, well-posed), the
-// block a Table-1 train's mesh tones with shaft-rate modulation plus 5 % noise: timing needs
-// the shapes, the operators and realistic spectra, not a particular gearbox.
+// The FRF set, the block and the set-up are tests/bench/reference_workload.h (shared with the
+// recorded-figures regression test).
 #include <benchmark/benchmark.h>
 
-#include <cmath>
+#include <chrono>
 #include <complex>
-#include <numbers>
-#include <random>
+#include <ctime>
 #include <string>
+#include <vector>
 
-#include "core/diagnosis/train_layout.h"
+#include "core/dsp/spectrum.h"
+#include "core/inverse/identification_operator.h"
 #include "core/pipeline/block_processor.h"
+#include "core/pipeline/frf_grid_mapping.h"
+#include "tests/bench/reference_workload.h"
 
 namespace gearpath {
 namespace {
 
-constexpr double kFs = 8000.0;
-constexpr double kSpeedHz = 10.0;  // input shaft, 600 r/min
-
-FrfSet ReferenceFrfSet(int channels, int paths) {
-  FrfSet set;
-  set.decoupling = "model";
-  const char* gears[] = {"G1", "G2", "G3", "G4"};
-  for (int p = 0; p < paths; ++p) {
-    TransferPath tp;
-    tp.name = "B" + std::to_string(p / 3 + 1) + "xyz"[p % 3];
-    tp.direction = std::string(1, "xyz"[p % 3]);
-    tp.bearing = "bearing " + std::to_string(p / 3 + 1);
-    tp.gears = {gears[(p / 3) % 4]};
-    set.paths.push_back(tp);
-  }
-  for (int c = 0; c < channels; ++c) {
-    set.channels.push_back({"A" + std::to_string(c / 3 + 1), std::string(1, "xyz"[c % 3])});
-  }
-  constexpr Eigen::Index kBins = 8001;
-  set.decoupled.frequency_hz = Eigen::VectorXd::LinSpaced(kBins, 0.0, 4000.0);
-  // Per (channel, path): a sum of three modes with random frequency, damping and gain, plus a
-  // direct term on the "own" path so the operator is well posed.
-  std::mt19937_64 rng(42);
-  std::uniform_real_distribution<double> fr(300.0, 3500.0), zeta(0.01, 0.04), gain(-1.0, 1.0);
-  struct Mode { double f, z, g; };
-  std::vector<Mode> modes(static_cast<std::size_t>(channels * paths * 3));
-  for (Mode& m : modes) m = {fr(rng), zeta(rng), gain(rng)};
-  set.decoupled.at.assign(kBins, Eigen::MatrixXcd(channels, paths));
-  for (Eigen::Index k = 0; k < kBins; ++k) {
-    const double w = 2.0 * std::numbers::pi * set.decoupled.frequency_hz[k];
-    Eigen::MatrixXcd& h = set.decoupled.at[static_cast<std::size_t>(k)];
-    for (int c = 0; c < channels; ++c) {
-      for (int p = 0; p < paths; ++p) {
-        std::complex<double> v = (c % paths) == p ? 1e-3 : 0.0;
-        for (int i = 0; i < 3; ++i) {
-          const Mode& m = modes[static_cast<std::size_t>((c * paths + p) * 3 + i)];
-          const double wn = 2.0 * std::numbers::pi * m.f;
-          v += 1e-3 * m.g * w * w / std::complex<double>(wn * wn - w * w, 2.0 * m.z * wn * w);
-        }
-        h(c, p) = v;
-      }
-    }
-  }
-  return set;
-}
-
-// drift: the speed moves by +/- 0.3 % within the block (a sine over the block), so the
-// per-machine tracking decision tracks it and the tracked averages are paid for.
-AccelBlock ReferenceBlock(const FrfSet& set, std::uint32_t n, bool drift) {
-  AccelBlock b;
-  b.machine_id = "ref";
-  b.sample_rate_hz = kFs;
-  b.speed_hz = kSpeedHz;
-  b.speed_source = SpeedSource::kAcquisition;
-  b.samples_per_channel = n;
-  for (const ResponseChannel& ch : set.channels) {
-    ChannelInfo info;
-    info.sensor = ch.sensor;
-    info.axis = ch.axis == "x" ? Axis::kX : ch.axis == "y" ? Axis::kY : Axis::kZ;
-    b.channels.push_back(info);
-  }
-  std::mt19937_64 rng(7);
-  std::normal_distribution<double> noise(0.0, 0.05);
-  b.samples.resize(b.channels.size() * n);
-  const double period = n / kFs;
-  for (std::size_t c = 0; c < b.channels.size(); ++c) {
-    for (std::uint32_t i = 0; i < n; ++i) {
-      // Time at constant speed that gives the same shaft angle (integral of the speed ratio).
-      const double t = i / kFs - (drift ? 0.003 * period / (2.0 * std::numbers::pi) *
-                                              std::cos(2.0 * std::numbers::pi * i / kFs / period)
-                                        : 0.0);
-      // Mesh 1 at 280 Hz modulated at 7 Hz, mesh 2 at 238 Hz: Table 1 at 600 r/min.
-      const double phase = static_cast<double>(c);
-      const double v = (1.0 + 0.2 * std::cos(2.0 * std::numbers::pi * 7.0 * t)) *
-                           std::cos(2.0 * std::numbers::pi * 280.0 * t + 0.3 * phase) +
-                       0.6 * std::cos(2.0 * std::numbers::pi * 238.0 * t + 0.7 * phase);
-      b.samples[c * n + i] = static_cast<float>(v + noise(rng));
-    }
-  }
-  return b;
-}
-
-// tracking: 0 = the defaults (localisation tracking only), 1 = order tracking of every
-// average, 2 = none.
-MachineSetup ReferenceSetup(int channels, int tracking) {
-  MachineSetup setup;
-  setup.machine_id = "ref";
-  setup.frf_set = ReferenceFrfSet(channels, 12);
-  setup.train = TrainLayout::Table1();
-  setup.options.sample_rate_hz = kFs;
-  setup.options.nominal_speed_hz = kSpeedHz;
-  setup.options.identification.iterations = 50;
-  setup.options.kurtogram_max_level = 6;
-  setup.options.order_tracking = tracking == 1;
-  setup.options.localisation_tracking = tracking == 0;
-  setup.options.max_samples_per_channel = 1u << 17;
-  return setup;
-}
+using reference::kFs;
+using reference::ReferenceBlock;
+using reference::ReferenceSetup;
 
 // Args: channels, samples per channel, tracking (ReferenceSetup), drift (ReferenceBlock).
 void BM_ReferenceBlock(benchmark::State& state) {
@@ -164,7 +71,137 @@ BENCHMARK(BM_ReferenceBlock)
     ->Args({12, 65536, 0, 0})
     ->Unit(benchmark::kMillisecond);
 
-// Create + Prepare of the reference machine (the precompute before READY=1).
+// The same blocks with the processor's per-stage timing on: one counter per part of Process()
+// (validation, then every stage), in ms of wall clock per block (the mean over the timed
+// blocks; with --benchmark_repetitions the aggregates are taken over the repetitions' means),
+// their sum, and cpu_over_wall (multiply a stage's figure by it for its CPU time on a loaded
+// machine). Since issue 9 the residual and the path energies are computed in the
+// identification pass (path_energy keeps the shares and the criterion).
+void BM_ReferenceStages(benchmark::State& state) {
+  const auto channels = static_cast<int>(state.range(0));
+  const auto n = static_cast<std::uint32_t>(state.range(1));
+  MachineSetup setup = ReferenceSetup(channels, static_cast<int>(state.range(2)));
+  AccelBlock block = ReferenceBlock(setup.frf_set, n, state.range(3) != 0);
+  auto processor = BlockProcessor::Create(std::move(setup));
+  if (!processor.ok()) {
+    state.SkipWithError(processor.error().c_str());
+    return;
+  }
+  if (Status s = processor->Prepare(n); !s) {
+    state.SkipWithError(s.error().c_str());
+    return;
+  }
+  BlockResult result;
+  std::uint64_t seq = 0;
+  for (int i = 0; i < 21; ++i) {
+    block.sequence = ++seq;
+    (void)processor->Process(block.view(), result);
+  }
+  processor->set_stage_timing(true);
+  processor->ResetStageTimes();
+  const auto wall0 = std::chrono::steady_clock::now();
+  const std::clock_t cpu0 = std::clock();
+  for (auto _ : state) {
+    block.sequence = ++seq;
+    const ProcessOutcome o = processor->Process(block.view(), result);
+    benchmark::DoNotOptimize(o.reason);
+  }
+  // The stage times are wall clock: on a loaded machine they include preemption. This ratio of
+  // the loop's CPU time to its wall time scales them to CPU time (preemption falls on every
+  // stage in proportion to its length).
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  state.counters["cpu_over_wall"] = wall > 0.0 ? cpu / wall : 0.0;
+  double sum = 0.0;
+  for (const StageTime& t : processor->stage_times()) {
+    if (t.blocks == 0) continue;
+    const double ms = 1e3 * t.total_s / static_cast<double>(t.blocks);
+    state.counters[std::string(t.stage) + "_ms"] = ms;
+    sum += ms;
+  }
+  state.counters["sum_ms"] = sum;
+}
+BENCHMARK(BM_ReferenceStages)
+    ->ArgNames({"channels", "samples", "tracking", "drift"})
+    ->Args({12, 16000, 0, 0})
+    ->Args({18, 16000, 0, 0})
+    ->Args({12, 65536, 0, 0})
+    ->Unit(benchmark::kMillisecond);
+
+// The per-bin identification operator alone on the reference block's spectra, every in-range
+// bin through IdentificationOperator::Identify, without (figures:0) and with (figures:1) the
+// per-bin figures; the difference is the cost of the residual ||x - H F|| (issue 9).
+void BM_ReferenceIdentify(benchmark::State& state) {
+  const bool figures = state.range(0) != 0;
+  constexpr std::uint32_t kN = 16000;
+  const MachineSetup setup = ReferenceSetup(12, 0);
+  const AccelBlock block = ReferenceBlock(setup.frf_set, kN, false);
+  auto map = MapFrfToBlockGrid(setup.frf_set.decoupled, kN, kFs);
+  if (!map) {
+    state.SkipWithError(map.error().c_str());
+    return;
+  }
+  auto op = IdentificationOperator::Create(*map->in_range, setup.options.identification);
+  if (!op) {
+    state.SkipWithError(op.error().c_str());
+    return;
+  }
+  const std::size_t channels = block.channels.size();
+  const std::size_t bins = kN / 2 + 1;
+  std::vector<double> time(channels * kN);
+  for (std::size_t i = 0; i < time.size(); ++i) time[i] = block.samples[i];
+  std::vector<std::complex<double>> spec(channels * bins);
+  auto spectrum = Spectrum::Create(kN, channels, kFs);
+  if (!spectrum || !spectrum->Process(time, spec).ok()) {
+    state.SkipWithError("spectrum");
+    return;
+  }
+  const Eigen::Index in_range = map->frf.bins();
+  Eigen::MatrixXcd x(static_cast<Eigen::Index>(channels), in_range);
+  for (Eigen::Index i = 0; i < in_range; ++i) {
+    for (std::size_t c = 0; c < channels; ++c) {
+      x(static_cast<Eigen::Index>(c), i) = spec[c * bins + map->first_bin + static_cast<std::size_t>(i)];
+    }
+  }
+  Eigen::MatrixXcd forces(op->paths(), in_range);
+  BinFigures fig;
+  for (auto _ : state) {
+    for (Eigen::Index i = 0; i < in_range; ++i) {
+      (void)op->Identify(i, x.col(i), forces.col(i), figures ? &fig : nullptr);
+    }
+    benchmark::DoNotOptimize(forces.data());
+  }
+}
+BENCHMARK(BM_ReferenceIdentify)->ArgName("figures")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// A machine's first block after Create + Prepare (as the daemon does at start and before a
+// reload's swap), against BM_ReferenceBlock's later blocks: the precompute is not timed, the
+// first Process() is (the bar: it costs no more than a normal block).
+void BM_ReferenceFirstBlock(benchmark::State& state) {
+  const MachineSetup setup = ReferenceSetup(12, 0);
+  AccelBlock block = ReferenceBlock(setup.frf_set, 16000, false);
+  block.sequence = 1;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto processor = BlockProcessor::Create(setup);
+    if (!processor.ok() || !processor->Prepare(16000).ok()) {
+      state.SkipWithError("create / prepare");
+      return;
+    }
+    BlockResult result;
+    state.ResumeTiming();
+    const ProcessOutcome o = processor->Process(block.view(), result);
+    benchmark::DoNotOptimize(o.reason);
+    state.PauseTiming();
+    processor = Error{"released untimed"};
+    state.ResumeTiming();
+  }
+}
+BENCHMARK(BM_ReferenceFirstBlock)->Unit(benchmark::kMillisecond)->Iterations(5);
+
+// Create + Prepare of the reference machine (the precompute before READY=1). Its per-bin
+// operators are built on every hardware thread: the CPU time is that of every thread (the
+// single-thread cost), the real time what a machine waits.
 void BM_ReferencePrecompute(benchmark::State& state) {
   const MachineSetup setup = ReferenceSetup(12, 0);
   for (auto _ : state) {
@@ -180,7 +217,11 @@ void BM_ReferencePrecompute(benchmark::State& state) {
     benchmark::DoNotOptimize(processor->configured_for(16000));
   }
 }
-BENCHMARK(BM_ReferencePrecompute)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_ReferencePrecompute)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace gearpath

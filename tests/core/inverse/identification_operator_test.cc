@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <complex>
 #include <cstdlib>
 #include <vector>
 
@@ -119,6 +120,69 @@ TEST(IdentificationOperator, EqualsTheSingleBinSolversForEveryMethodAndShape) {
         ASSERT_TRUE(expected.ok());
         EXPECT_LT(RelativeError(forces.col(k), *expected), 1e-12)
             << ToString(method) << " " << rows << "x" << cols << " bin " << k;
+      }
+    }
+  }
+}
+
+TEST(IdentificationOperator, ChunkedPassGivesTheSingleBinForcesAndTheExplicitResidual) {
+  // The per-block pass (ForcesOfChunk over kChunkBins bins at a time, Residual2 from the SVD
+  // rows) against the textbook: forces of the single-bin solvers, and ||x - H F||^2 formed from
+  // H itself. 37 bins: two full chunks and a partial one; more channels than paths, square,
+  // fewer channels than paths.
+  constexpr std::size_t kChunk = IdentificationOperator::kChunkBins;
+  RandomSystems rnd(76);
+  for (const auto& [rows, cols] : {std::pair{7, 3}, std::pair{4, 4}, std::pair{3, 5}}) {
+    const int bins = 37;
+    const FrfMatrix frf = RandomFrf(rnd, rows, cols, bins, 300.0);
+    const Eigen::MatrixXcd x = rnd.Matrix(rows, bins);
+    for (InverseMethod method : {InverseMethod::kMwi, InverseMethod::kTikhonov}) {
+      Result<IdentificationOperator> op = IdentificationOperator::Create(frf, Fixed(method, 1e-3, 7));
+      ASSERT_TRUE(op.ok()) << op.error();
+      ASSERT_EQ(op->chunks(), 3u);
+      const auto m = static_cast<std::size_t>(rows);
+      const auto n = static_cast<std::size_t>(cols);
+      std::vector<double> x_re(m * kChunk), x_im(m * kChunk), f_re(n * kChunk), f_im(n * kChunk);
+      for (std::size_t chunk = 0; chunk < op->chunks(); ++chunk) {
+        for (std::size_t c = 0; c < m; ++c) {
+          for (std::size_t j = 0; j < kChunk; ++j) {
+            const std::size_t k = chunk * kChunk + j;
+            const std::complex<double> v =
+                k < static_cast<std::size_t>(bins)
+                    ? x(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(k))
+                    : std::complex<double>{};
+            x_re[c * kChunk + j] = v.real();
+            x_im[c * kChunk + j] = v.imag();
+          }
+        }
+        op->ForcesOfChunk(chunk, x_re.data(), x_im.data(), f_re.data(), f_im.data());
+        for (std::size_t j = 0; j < kChunk; ++j) {
+          const std::size_t k = chunk * kChunk + j;
+          if (k >= static_cast<std::size_t>(bins)) {  // past the last bin: zero force
+            for (std::size_t p = 0; p < n; ++p) {
+              EXPECT_EQ(f_re[p * kChunk + j], 0.0);
+              EXPECT_EQ(f_im[p * kChunk + j], 0.0);
+            }
+            continue;
+          }
+          const auto ki = static_cast<Eigen::Index>(k);
+          const Eigen::VectorXcd xk = x.col(ki);
+          Eigen::VectorXcd fk(cols);
+          for (std::size_t p = 0; p < n; ++p) {
+            fk(static_cast<Eigen::Index>(p)) = {f_re[p * kChunk + j], f_im[p * kChunk + j]};
+          }
+          Result<Eigen::VectorXcd> expected = method == InverseMethod::kMwi
+                                                  ? SolveMwi(frf.at[k], xk, 1e-3, 7)
+                                                  : SolveTikhonov(frf.at[k], xk, 1e-3);
+          ASSERT_TRUE(expected.ok());
+          EXPECT_LT(RelativeError(fk, *expected), 1e-12)
+              << ToString(method) << " " << rows << "x" << cols << " bin " << k;
+          const double explicit_residual = (xk - frf.at[k] * fk).norm();
+          const double residual =
+              std::sqrt(op->Residual2(ki, x_re.data() + j, x_im.data() + j, kChunk));
+          EXPECT_NEAR(residual, explicit_residual, 1e-9 * xk.norm())
+              << ToString(method) << " " << rows << "x" << cols << " bin " << k;
+        }
       }
     }
   }

@@ -79,9 +79,9 @@ TEST(SharedFrfOperatorsTest, TwoMachinesOnOneSetShareOneOperatorAndJudgeAsAPriva
 }
 
 TEST(SharedFrfOperatorsTest, MachinesOnOneSetAndShapeHoldOneFrfPowerTable) {
-  // The path-energy stage's |H|^2 table (paths x channels x in-range bins) depends only on
-  // the set and the block shape: built once, held by every machine (4.6 MB each at the
-  // reference workload otherwise).
+  // The |H|^2 and H tables of the identification pass, the path energies and the
+  // contributions (paths x channels x in-range bins) depend only on the set and the block
+  // shape: built once, held by every machine (23 MB each at the reference workload otherwise).
   const Machine& m = Table1Machine();
   auto shared = SharedOf(m);
   BlockProcessor a = Make(m, shared);
@@ -92,12 +92,13 @@ TEST(SharedFrfOperatorsTest, MachinesOnOneSetAndShapeHoldOneFrfPowerTable) {
   auto table = shared->Power(kBlock, kFs);
   ASSERT_TRUE(table.ok()) << table.error();
   EXPECT_EQ(shared->power_tables_built(), 1u);
-  // Held by the shared entry, both machines' path-energy stages and this test: one instance.
+  // Held by the shared entry, both machines' workspaces and this test: one instance.
   EXPECT_EQ(table->use_count(), 4);
   const FrfPowerTable& t = **table;
   EXPECT_EQ(t.paths, 3u);
   EXPECT_EQ(t.channels, 3u);
   EXPECT_EQ(t.power.size(), t.paths * t.channels * t.bins);
+  EXPECT_EQ(t.response.size(), t.paths * t.channels * t.bins);
   // Another block shape is another table.
   ASSERT_TRUE(a.Prepare(kBlock / 2));
   EXPECT_EQ(shared->power_tables_built(), 2u);
