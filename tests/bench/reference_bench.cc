@@ -31,27 +31,36 @@ using reference::ReferenceBlock;
 using reference::ReferenceSetup;
 
 // Args: channels, samples per channel, tracking (ReferenceSetup), drift (ReferenceBlock).
-void BM_ReferenceBlock(benchmark::State& state) {
+// The reference machine of the benchmark's args (channels, samples, tracking, drift), built,
+// prepared and past its baseline, so every further block is scored as in service. `block` is
+// its block and `seq` the last sequence number used. An error is the benchmark's skip reason.
+Result<BlockProcessor> WarmedUpMachine(const benchmark::State& state, AccelBlock& block,
+                                       std::uint64_t& seq) {
   const auto channels = static_cast<int>(state.range(0));
   const auto n = static_cast<std::uint32_t>(state.range(1));
   MachineSetup setup = ReferenceSetup(channels, static_cast<int>(state.range(2)));
-  AccelBlock block = ReferenceBlock(setup.frf_set, n, state.range(3) != 0);
+  block = ReferenceBlock(setup.frf_set, n, state.range(3) != 0);
   auto processor = BlockProcessor::Create(std::move(setup));
-  if (!processor.ok()) {
-    state.SkipWithError(processor.error().c_str());
-    return;
-  }
-  if (Status s = processor->Prepare(n); !s) {
-    state.SkipWithError(s.error().c_str());
-    return;
-  }
+  if (!processor.ok()) return Error{processor.error()};
+  if (Status s = processor->Prepare(n); !s) return Error{s.error()};
   BlockResult result;
-  std::uint64_t seq = 0;
-  // Past the baseline, so every block is scored as in service.
   for (int i = 0; i < 21; ++i) {
     block.sequence = ++seq;
     (void)processor->Process(block.view(), result);
   }
+  return processor;
+}
+
+void BM_ReferenceBlock(benchmark::State& state) {
+  const auto n = static_cast<std::uint32_t>(state.range(1));
+  AccelBlock block;
+  std::uint64_t seq = 0;
+  auto processor = WarmedUpMachine(state, block, seq);
+  if (!processor.ok()) {
+    state.SkipWithError(processor.error().c_str());
+    return;
+  }
+  BlockResult result;
   for (auto _ : state) {
     block.sequence = ++seq;
     const ProcessOutcome o = processor->Process(block.view(), result);
@@ -78,25 +87,14 @@ BENCHMARK(BM_ReferenceBlock)
 // machine). Since issue 9 the residual and the path energies are computed in the
 // identification pass (path_energy keeps the shares and the criterion).
 void BM_ReferenceStages(benchmark::State& state) {
-  const auto channels = static_cast<int>(state.range(0));
-  const auto n = static_cast<std::uint32_t>(state.range(1));
-  MachineSetup setup = ReferenceSetup(channels, static_cast<int>(state.range(2)));
-  AccelBlock block = ReferenceBlock(setup.frf_set, n, state.range(3) != 0);
-  auto processor = BlockProcessor::Create(std::move(setup));
+  AccelBlock block;
+  std::uint64_t seq = 0;
+  auto processor = WarmedUpMachine(state, block, seq);
   if (!processor.ok()) {
     state.SkipWithError(processor.error().c_str());
     return;
   }
-  if (Status s = processor->Prepare(n); !s) {
-    state.SkipWithError(s.error().c_str());
-    return;
-  }
   BlockResult result;
-  std::uint64_t seq = 0;
-  for (int i = 0; i < 21; ++i) {
-    block.sequence = ++seq;
-    (void)processor->Process(block.view(), result);
-  }
   processor->set_stage_timing(true);
   processor->ResetStageTimes();
   const auto wall0 = std::chrono::steady_clock::now();
