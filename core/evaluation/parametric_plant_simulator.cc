@@ -122,6 +122,8 @@ Result<ParametricPlantSimulator> ParametricPlantSimulator::Create(
 
   ParametricPlantSimulator sim;
   sim.config_ = c;
+  sim.header_ = {c.machine_id, c.sample_rate_hz, c.input_speed_hz, c.start_time_ns,
+                 c.first_sequence};
   sim.gearbox_ = std::move(gearbox);
   sim.channel_points_ = std::move(channel_points);
   sim.channels_ = std::move(channels);
@@ -328,15 +330,7 @@ void ParametricPlantSimulator::NextBlock(bool fault_on, AccelBlock& block) {
   pending_.reset();
   const std::int64_t first = static_cast<std::int64_t>(blocks_) * len;
   disturbances_.AddUnmodelled(first, blocks_, reference_rms_, scratch_);
-  block.machine_id = config_.machine_id;
-  block.sequence = config_.first_sequence + blocks_;
-  block.t0_ns = config_.start_time_ns +
-                std::llround(static_cast<double>(first) * 1e9 / config_.sample_rate_hz);
-  block.sample_rate_hz = config_.sample_rate_hz;
-  block.speed_hz = config_.input_speed_hz;
-  block.speed_source = SpeedSource::kAcquisition;
-  block.channels = channels_;
-  block.samples_per_channel = len;
+  header_.Stamp(blocks_, len, channels_, block);
   disturbances_.WriteWithNoise(blocks_, reference_rms_, scratch_, block.samples);
   ++blocks_;
 }

@@ -36,6 +36,7 @@
 #include "core/evaluation/gearbox_integrator.h"
 #include "core/evaluation/measurement_disturbances.h"
 #include "core/evaluation/plant_stream.h"
+#include "core/evaluation/simulated_block_header.h"
 
 namespace gearpath {
 
@@ -117,6 +118,7 @@ class ParametricPlantSimulator final : public PlantStream {
   double scale_ = 1.0;
   SpeedProfile speed_;
   MeasurementDisturbances disturbances_;
+  SimulatedBlockHeader header_;  // what every block says about its machine and clock
   double step_s_ = 0.0;
   std::int64_t run_in_steps_ = 0;
   Run run_;

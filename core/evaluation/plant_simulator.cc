@@ -55,6 +55,8 @@ Result<PlantSimulator> PlantSimulator::Create(std::shared_ptr<const PlantDynamic
 
   PlantSimulator sim(std::move(excitation));
   sim.config_ = c;
+  sim.header_ = {c.machine_id, c.sample_rate_hz, c.input_speed_hz, c.start_time_ns,
+                 c.first_sequence};
   sim.dynamics_ = std::move(dynamics);
   sim.channels_ = std::move(channels);
   sim.segment_ = static_cast<std::size_t>(c.segment_factor) * c.block_length;
@@ -177,15 +179,7 @@ void PlantSimulator::NextBlock(bool fault_on, AccelBlock& block) {
   const std::int64_t first = static_cast<std::int64_t>(blocks_) * len;
   NoiseFree(first, fault_on, scratch_);
   disturbances_.AddUnmodelled(first, blocks_, reference_rms_, scratch_);
-  block.machine_id = config_.machine_id;
-  block.sequence = config_.first_sequence + blocks_;
-  block.t0_ns = config_.start_time_ns +
-                std::llround(static_cast<double>(first) * 1e9 / config_.sample_rate_hz);
-  block.sample_rate_hz = config_.sample_rate_hz;
-  block.speed_hz = config_.input_speed_hz;
-  block.speed_source = SpeedSource::kAcquisition;
-  block.channels = channels_;
-  block.samples_per_channel = len;
+  header_.Stamp(blocks_, len, channels_, block);
   disturbances_.WriteWithNoise(blocks_, reference_rms_, scratch_, block.samples);
   ++blocks_;
 }

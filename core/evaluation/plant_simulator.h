@@ -36,6 +36,7 @@
 #include "core/dsp/fft_plan.h"
 #include "core/evaluation/measurement_disturbances.h"
 #include "core/evaluation/plant_excitation.h"
+#include "core/evaluation/simulated_block_header.h"
 
 namespace gearpath {
 
@@ -108,6 +109,7 @@ class PlantSimulator {
   Eigen::MatrixXcd te_spectrum_;  // bins x stages
   Eigen::VectorXd reference_rms_;
   MeasurementDisturbances disturbances_;  // noise and unmodelled sources, fixed per run
+  SimulatedBlockHeader header_;  // what every block says about its machine and clock
   SpeedProfile speed_;
   std::uint64_t blocks_ = 0;
   Eigen::MatrixXd scratch_;
