@@ -49,6 +49,22 @@ struct DisturbanceConfig {
   std::uint64_t seed = 1;
 };
 
+// The disturbance settings of a simulator configuration that names them as DisturbanceConfig
+// does (PlantSimulatorConfig, ParametricPlantSimulatorConfig).
+template <typename SimulatorConfig>
+DisturbanceConfig DisturbanceConfigOf(const SimulatorConfig& c) {
+  DisturbanceConfig dc;
+  dc.sample_rate_hz = c.sample_rate_hz;
+  dc.noise_relative = c.noise_relative;
+  dc.tones = c.tones;
+  dc.bursts = c.bursts;
+  dc.tone_level = c.tone_level;
+  dc.burst_level = c.burst_level;
+  dc.burst_rate_hz = c.burst_rate_hz;
+  dc.seed = c.seed;
+  return dc;
+}
+
 class MeasurementDisturbances {
  public:
   MeasurementDisturbances() = default;

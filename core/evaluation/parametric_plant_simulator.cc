@@ -129,17 +129,8 @@ Result<ParametricPlantSimulator> ParametricPlantSimulator::Create(
   sim.channels_ = std::move(channels);
   sim.fault_ = fault;
   sim.default_severity_ = fault.severity;
-  DisturbanceConfig dc;
-  dc.sample_rate_hz = c.sample_rate_hz;
-  dc.noise_relative = c.noise_relative;
-  dc.tones = c.tones;
-  dc.bursts = c.bursts;
-  dc.tone_level = c.tone_level;
-  dc.burst_level = c.burst_level;
-  dc.burst_rate_hz = c.burst_rate_hz;
-  dc.seed = c.seed;
   const auto nc = static_cast<Eigen::Index>(sim.channels_.size());
-  sim.disturbances_ = MeasurementDisturbances(dc, nc);
+  sim.disturbances_ = MeasurementDisturbances(DisturbanceConfigOf(c), nc);
   sim.speed_.mean_hz = c.input_speed_hz;
   sim.speed_.drift_relative = c.speed_drift ? c.drift_relative : 0.0;
   sim.speed_.period_s = static_cast<double>(c.block_length) / c.sample_rate_hz;

@@ -91,16 +91,7 @@ Result<PlantSimulator> PlantSimulator::Create(std::shared_ptr<const PlantDynamic
   sim.te_spectrum_.resize(bins, sim.excitation_.stage_count());
 
   const Eigen::Index nc = static_cast<Eigen::Index>(sim.channels_.size());
-  DisturbanceConfig dc;
-  dc.sample_rate_hz = c.sample_rate_hz;
-  dc.noise_relative = c.noise_relative;
-  dc.tones = c.tones;
-  dc.bursts = c.bursts;
-  dc.tone_level = c.tone_level;
-  dc.burst_level = c.burst_level;
-  dc.burst_rate_hz = c.burst_rate_hz;
-  dc.seed = c.seed;
-  sim.disturbances_ = MeasurementDisturbances(dc, nc);
+  sim.disturbances_ = MeasurementDisturbances(DisturbanceConfigOf(c), nc);
   sim.speed_.mean_hz = c.input_speed_hz;
   sim.speed_.drift_relative = c.speed_drift ? c.drift_relative : 0.0;
   sim.speed_.period_s = static_cast<double>(c.block_length) / c.sample_rate_hz;
