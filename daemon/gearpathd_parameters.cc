@@ -367,8 +367,8 @@ ParamSpec AnalysisSection() {
                       0.0, 1.0, 0.05),
                Boolean("tail_guard",
                        "Widen each indicator's healthy spread so that the worst baseline block "
-                       "scores at most clear_level x the limit (indicators that are heavy-tailed "
-                       "when healthy, e.g. high moments under broadband bursts).",
+                       "scores at most z = 3, about half the limit (indicators that are "
+                       "heavy-tailed when healthy, e.g. high moments under broadband bursts).",
                        true),
                Number("k_sigma",
                       "Published envelope-indicator thresholds = mean + k_sigma x standard "

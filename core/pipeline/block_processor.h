@@ -135,9 +135,8 @@ struct AnalysisOptions {
   double false_alarm_rate = 0.01;
   double scale_floor = 0.05;  // relative floor of every indicator's healthy scale (5 %)
   // Tail guard (core/diagnosis/robust_baseline.h): every indicator's healthy scale is at least
-  // its largest deviation over the baseline blocks / (clear_level x limit z), so a block like the
-  // worst healthy one neither raises nor holds an alarm. Off = median, robust scale and the
-  // floor only.
+  // its largest deviation over the baseline blocks / 3, so no healthy baseline block would have
+  // scored above z = 3 (about half the limit). Off = median, robust scale and the floor only.
   bool tail_guard = true;
   // Persistence (k of the last n blocks), hysteresis and clear delay (core/diagnosis/
   // alarm_model.h): suspected after suspect_k exceedances, alarm after alarm_k, cleared after

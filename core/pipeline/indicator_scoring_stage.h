@@ -5,14 +5,14 @@
 // moment; core/diagnosis/robust_baseline.h). Afterwards each indicator gets a robust z-score,
 // and the block's score is the largest DIRECTIONAL z (a rise for indicators that damage
 // raises; either way for the mesh-harmonic amplitude and the TSA level, which a broken tooth
-// can lower) over the measured channels, the measured transfer signatures and the envelope
-// indicators (the identified forces' and the path contributions' indicators get a z and are
-// published, but are too noisy to raise an alarm), taken over the last two scored blocks (the
-// sum of their z over sqrt 2, the previous one clipped) and divided by the limit that keeps a
-// healthy block's chance of any exceedance at AnalysisOptions::false_alarm_rate. Scores are
-// kept per slot and per rate group for the localisation stage. The envelope indicators (seed)
-// are scored alike and also keep their published mean + k sigma thresholds
-// (core/diagnosis/healthy_baseline.h).
+// can lower) over the measured channels and the measured transfer signatures (the identified
+// forces', the path contributions' and the envelope indicators get a z and are published, but
+// do not raise an alarm: too noisy, or, for the envelope, measured in a band that moves from
+// block to block), taken over the last two scored blocks (the sum of their z over sqrt 2, the
+// previous one clipped) and divided by the limit that keeps a healthy block's chance of any
+// exceedance at AnalysisOptions::false_alarm_rate. Scores are kept per slot and per rate group
+// for the localisation stage. The envelope indicators (seed) also keep their published mean +
+// k sigma thresholds (core/diagnosis/healthy_baseline.h).
 #pragma once
 
 #include <vector>

@@ -306,9 +306,7 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
   for (const SignatureSlot& ss : impl->signature_slots) {
     if (!ss.forces) impl->scored_indicator_count += 2;
   }
-  // The envelope indicators of the raw signals only (the reconstructed ones are a path
-  // contribution's: published, not scored; indicator_scoring_stage.cc).
-  impl->scored_indicator_count += impl->shaft_ratio.size();
+  // The envelope indicators are published, not scored (indicator_scoring_stage.cc).
 
   impl->expect.machine_id = id;
   impl->expect.channels = setup.block_channels;
