@@ -141,6 +141,34 @@ TEST(BlockProcessorTest, AllocatesNothingOnceTheBlockShapeIsConfigured) {
   EXPECT_EQ(after - before, 0);
 }
 
+// Prepare() does all of a shape's configuring (what the daemon runs at load, before READY=1):
+// a machine's very first block after it allocates nothing either, given a result that has been
+// filled before (a BlockResult sizes its own vectors on its first use, by any processor of the
+// same machine).
+TEST(BlockProcessorTest, AllocatesNothingInTheFirstBlockAfterPrepare) {
+  const MachineSetup setup = MakeSetup(Table1Machine());
+  GearboxSimulator sim = MakeSimulator(Table1Machine(), FaultType::kNone, "", 3);
+  AccelBlock block;
+  sim.NextBlock(block);
+  block.sequence = 1;
+  BlockResult r;
+  {
+    auto earlier = BlockProcessor::Create(setup);
+    ASSERT_TRUE(earlier.ok()) << earlier.error();
+    ASSERT_TRUE(earlier->Process(block.view(), r).accepted());
+  }
+  auto p = BlockProcessor::Create(setup);
+  ASSERT_TRUE(p.ok()) << p.error();
+  ASSERT_TRUE(p->Prepare(kBlock).ok());
+  ASSERT_TRUE(p->configured_for(kBlock));
+  const long before = g_allocations.load();
+  const ProcessOutcome o = p->Process(block.view(), r);
+  const long after = g_allocations.load();
+  EXPECT_TRUE(o.accepted()) << o.message.view();
+  EXPECT_EQ(r.verdict.state, FaultState::kLearning);
+  EXPECT_EQ(after - before, 0);
+}
+
 TEST(BlockProcessorTest, EstimatesTheSpeedFromTheMeshLinesWhenNothingGivesIt) {
   MachineSetup s = MakeSetup(Table1Machine());
   s.options.nominal_speed_hz = 0.0;
