@@ -111,6 +111,13 @@ TEST(BlockProcessorTest, ContributionsOfAllPathsReproduceTheMeasuredChannel) {
   ASSERT_EQ(dominant.size(), kBlock);
   for (std::size_t i = 0; i < kBlock; ++i) EXPECT_DOUBLE_EQ(dominant[i], one[i]);
   EXPECT_TRUE(p->DominantPathSignal(3).empty());  // no such channel
+  // Every channel on request, one at a time (each call for another channel makes its signal).
+  for (std::size_t c : {0, 2, 1}) {
+    ASSERT_TRUE(p->PathSignal(static_cast<std::size_t>(r.dominant_path), c, one));
+    const std::span<const double> at = p->DominantPathSignal(c);
+    ASSERT_EQ(at.size(), kBlock);
+    for (std::size_t i = 0; i < kBlock; ++i) ASSERT_DOUBLE_EQ(at[i], one[i]) << c << " " << i;
+  }
   double shares = 0.0;
   for (const BlockPathShare& s : r.paths) shares += s.share;
   EXPECT_NEAR(shares, 1.0, 1e-12);
