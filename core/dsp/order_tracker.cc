@@ -21,16 +21,31 @@ constexpr std::size_t kFloorBins = 64;
 using Normal = Eigen::Matrix<double, kBasis, kBasis>;
 using Vector = Eigen::Matrix<double, kBasis, 1>;
 
-// Legendre polynomials P_0..P_degree at x in [-1, 1] (well conditioned normal equations);
-// entries above `degree` are zero.
-Vector Legendre(double x, int degree) noexcept {
-  Vector p = Vector::Zero();
-  p(0) = 1.0;
-  if (degree >= 1) p(1) = x;
-  for (int k = 1; k < degree; ++k) {
-    p(k + 1) = ((2.0 * k + 1.0) * x * p(k) - k * p(k - 1)) / (k + 1.0);
+// Legendre polynomials P_0..P_degree at x in [-1, 1] (well conditioned normal equations), at
+// kLegendreLanes consecutive samples i0.. of a block whose last sample is `last` (x = 2 i /
+// last - 1): p[k * kLegendreLanes + j] = P_k at sample i0 + j. Lane by lane (the compiler
+// vectorises across the samples; each value has the bits of the scalar recurrence): the
+// recurrence's divisions are a dependency chain per sample, which one sample at a time made
+// them most of a Track().
+constexpr std::size_t kLegendreLanes = 8;
+using LegendreChunk = std::array<double, kBasis * kLegendreLanes>;
+
+inline void Legendre(std::size_t i0, double last, int degree, LegendreChunk& p) noexcept {
+  double* p0 = p.data();
+  for (std::size_t j = 0; j < kLegendreLanes; ++j) p0[j] = 1.0;
+  if (degree < 1) return;
+  double* p1 = p.data() + kLegendreLanes;
+  for (std::size_t j = 0; j < kLegendreLanes; ++j) {
+    p1[j] = 2.0 * static_cast<double>(i0 + j) / last - 1.0;
   }
-  return p;
+  for (int k = 1; k < degree; ++k) {
+    const double* pk = p.data() + static_cast<std::size_t>(k) * kLegendreLanes;
+    const double* pm = pk - kLegendreLanes;
+    double* pn = p.data() + static_cast<std::size_t>(k + 1) * kLegendreLanes;
+    for (std::size_t j = 0; j < kLegendreLanes; ++j) {
+      pn[j] = ((2.0 * k + 1.0) * p1[j] * pk[j] - k * pm[j]) / (k + 1.0);
+    }
+  }
 }
 
 std::string Hz(double v) { return std::to_string(v) + " Hz"; }
@@ -179,15 +194,34 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
       weight_[i] = (i < edge || i + edge >= n_) ? 0.0 : std::norm(z[i]);
     }
     // 4. Weighted least-squares Legendre fit.
+    // The lower triangle of the normal matrix, sum of w p p^T, and the right-hand side over
+    // the weighted samples, on the (degree + 1) polynomials only.
     Normal normal = Normal::Zero();
     Vector rhs = Vector::Zero();
     double weight_sum = 0.0;
-    for (std::size_t i = 0; i < n_; ++i) {
-      if (weight_[i] == 0.0) continue;
-      const Vector p = Legendre(2.0 * static_cast<double>(i) / last - 1.0, degree);
-      normal.selfadjointView<Eigen::Lower>().rankUpdate(p, weight_[i]);
-      rhs += weight_[i] * phase_[i] * p;
-      weight_sum += weight_[i];
+    const int terms = degree + 1;
+    LegendreChunk p{};
+    for (std::size_t i0 = 0; i0 < n_; i0 += kLegendreLanes) {
+      const std::size_t lanes = std::min(kLegendreLanes, n_ - i0);
+      bool any = false;
+      for (std::size_t j = 0; j < lanes; ++j) any = any || weight_[i0 + j] != 0.0;
+      if (!any) continue;
+      Legendre(i0, last, degree, p);
+      for (std::size_t j = 0; j < lanes; ++j) {
+        const double w = weight_[i0 + j];
+        if (w == 0.0) continue;
+        for (int b = 0; b < terms; ++b) {
+          const double wb = w * p[static_cast<std::size_t>(b) * kLegendreLanes + j];
+          for (int a = b; a < terms; ++a) {
+            normal(a, b) += wb * p[static_cast<std::size_t>(a) * kLegendreLanes + j];
+          }
+        }
+        const double wy = w * phase_[i0 + j];
+        for (int a = 0; a < terms; ++a) {
+          rhs(a) += wy * p[static_cast<std::size_t>(a) * kLegendreLanes + j];
+        }
+        weight_sum += w;
+      }
     }
     if (!(weight_sum > 0.0)) {
       return Error{std::string(kStage) + ": the carrier's envelope is zero inside the block"};
@@ -196,10 +230,22 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
     normal = normal.selfadjointView<Eigen::Lower>();
     const Vector coef = normal.ldlt().solve(rhs);
     double residual = 0.0;
-    for (std::size_t i = 0; i < n_; ++i) {
-      const double fit = coef.dot(Legendre(2.0 * static_cast<double>(i) / last - 1.0, degree));
-      if (weight_[i] != 0.0) residual += weight_[i] * (phase_[i] - fit) * (phase_[i] - fit);
-      phase_[i] = fit;
+    std::array<double, kLegendreLanes> fit{};
+    for (std::size_t i0 = 0; i0 < n_; i0 += kLegendreLanes) {
+      const std::size_t lanes = std::min(kLegendreLanes, n_ - i0);
+      Legendre(i0, last, degree, p);
+      fit.fill(0.0);
+      for (int a = 0; a < terms; ++a) {
+        const double c = coef(a);
+        const double* pa = p.data() + static_cast<std::size_t>(a) * kLegendreLanes;
+        for (std::size_t j = 0; j < kLegendreLanes; ++j) fit[j] += c * pa[j];
+      }
+      for (std::size_t j = 0; j < lanes; ++j) {
+        const std::size_t i = i0 + j;
+        const double w = weight_[i];
+        if (w != 0.0) residual += w * (phase_[i] - fit[j]) * (phase_[i] - fit[j]);
+        phase_[i] = fit[j];
+      }
     }
     result.phase_residual_rad = std::sqrt(residual / weight_sum);
     if (!std::isfinite(result.phase_residual_rad) ||

@@ -348,8 +348,7 @@ std::span<const double> BlockProcessor::DominantPathSignal(std::size_t channel) 
       channel >= im.machine.channels) {
     return {};
   }
-  BlockWorkspace& w = im.last_shape->work;  // made on the first call after a block
-  return std::span<const double>(w.DominantTime()).subspan(channel * w.n, w.n);
+  return im.last_shape->work.DominantTime(channel);  // made on the first call for the channel
 }
 
 bool BlockProcessor::PathSignal(std::size_t path, std::size_t channel,

@@ -333,9 +333,10 @@ class BlockProcessor {
 
   // Time signal (length samples_per_channel of the last accepted block) of the dominant
   // path's contribution at FRF row `channel`, from the last accepted block. Empty before the
-  // first accepted block or for an invalid channel. Valid until the next Process(). The first
-  // call after a block makes every channel's signal (no stage needs them: Process() does not);
-  // like Process(), not to be called concurrently on one instance. Allocation-free.
+  // first accepted block or for an invalid channel. Valid until the next Process() or a call
+  // for another channel (one channel's signal is kept, made on the first call for it after a
+  // block: no stage needs them, Process() does not); like Process(), not to be called
+  // concurrently on one instance. Allocation-free.
   std::span<const double> DominantPathSignal(std::size_t channel) const noexcept;
 
   // Time signal of any path's contribution at FRF row `channel` for the last accepted block,

@@ -54,7 +54,7 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   w.path_share.assign(paths, 0.0);
   w.path_criterion.assign(paths, 0.0);
   w.best_channel.assign(paths, 0);
-  w.dominant_time.assign(channels * n, 0.0);
+  w.dominant_time.assign(n, 0.0);
   w.indicators.assign(machine.indicator_count, 0.0);
   w.z.assign(machine.indicator_count, 0.0);
   w.excess.assign(machine.indicator_count, 0.0);
@@ -103,18 +103,16 @@ void BlockWorkspace::Contribution(std::size_t path, std::size_t channel,
                   reinterpret_cast<double*>(out.data() + map.first_bin), in_range);
 }
 
-const std::vector<double>& BlockWorkspace::DominantTime() noexcept {
-  if (dominant_time_ready) return dominant_time;
-  const std::size_t channels = dominant_time.size() / n;
-  if (dominant >= 0) {
-    for (std::size_t c = 0; c < channels; ++c) {
-      Contribution(static_cast<std::size_t>(dominant), c, one_spec);
-      (void)inverse->Process(one_spec, std::span<double>(dominant_time).subspan(c * n, n));
+std::span<const double> BlockWorkspace::DominantTime(std::size_t row) noexcept {
+  if (dominant_time_row != row) {
+    if (dominant >= 0) {
+      Contribution(static_cast<std::size_t>(dominant), row, one_spec);
+      (void)inverse->Process(one_spec, dominant_time);
+    } else {
+      std::fill(dominant_time.begin(), dominant_time.end(), 0.0);
     }
-  } else {
-    std::fill(dominant_time.begin(), dominant_time.end(), 0.0);
+    dominant_time_row = row;
   }
-  dominant_time_ready = true;
   return dominant_time;
 }
 

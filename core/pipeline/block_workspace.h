@@ -68,10 +68,13 @@ struct BlockWorkspace {
 
   int dominant = -1;                 // dominant path; -1 = none
   std::size_t indicator_channel = 0;  // FRF row of the raw / reconstructed indicator
-  // channels x n: the dominant path's contribution in time, made only when asked for
-  // (BlockProcessor::DominantPathSignal; no stage reads it): DominantTime().
+  // n: the dominant path's contribution in time at one FRF row, made only when asked for
+  // (BlockProcessor::DominantPathSignal; no stage reads it): DominantTime(). One row, not every
+  // row: the daemon never asks, and the 12 rows of the reference workload held 1.5 MB per
+  // machine (issue 9's memory bar).
   std::vector<double> dominant_time;
-  bool dominant_time_ready = false;  // reset by each block
+  std::size_t dominant_time_row = kNoRow;  // the row in dominant_time; reset by each block
+  static constexpr std::size_t kNoRow = static_cast<std::size_t>(-1);
 
   // Condition indicators (machine.condition_slots layout, then the envelope indicators).
   std::vector<double> indicators;          // machine.indicator_count values
@@ -112,9 +115,10 @@ struct BlockWorkspace {
   // elsewhere (seed Eq. 45). noexcept, allocation-free.
   void Contribution(std::size_t path, std::size_t channel, std::span<Cd> out) const noexcept;
 
-  // dominant_time, made on the first call after a block (12 contributions and inverse FFTs at
-  // the reference workload, which no stage needs). noexcept, allocation-free.
-  const std::vector<double>& DominantTime() noexcept;
+  // dominant_time at FRF row `row` (< channels), made on the first call for that row after a
+  // block (a contribution and an inverse FFT, which no stage needs); valid until the next block
+  // or a call for another row. noexcept, allocation-free.
+  std::span<const double> DominantTime(std::size_t row) noexcept;
 };
 
 }  // namespace gearpath

@@ -79,8 +79,8 @@ RejectReason DominantPathStage::Process(StageContext& ctx) noexcept {
     out.paths[p].criterion = w.path_criterion[p];
   }
 
-  // Its contribution in time at every channel is made only if asked for (DominantTime()).
-  w.dominant_time_ready = false;
+  // Its contribution in time at a channel is made only if asked for (DominantTime()).
+  w.dominant_time_row = BlockWorkspace::kNoRow;
   w.indicator_channel =
       dominant >= 0
           ? static_cast<std::size_t>(w.best_channel[static_cast<std::size_t>(dominant)])

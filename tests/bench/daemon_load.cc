@@ -6,14 +6,18 @@
 // topic says of every machine at the end (instances seen, blocks processed, rejected, lost).
 // Not a test: it prints figures.
 //
-//   bench_daemon_load [--machines 64] [--period 2] [--blocks 10] [--workers 0]
+//   bench_daemon_load [--machines 64] [--period 2] [--blocks 10] [--workers 0] [--reference]
 //
 // There is no machine cap (the configuration's sanity bound is 4096): --machines 100 and more
 // run; Status lists the first 64, MachineHealth every machine.
 //
-// Workload: the embedded default machine (builtin:table1: 3 channels x 3 paths, 8 kHz) with
-// 8192-sample blocks of the simulated healthy Table-1 gearbox, lighter than the 12 x 12
-// reference workload of bench_reference.
+// Workload: by default the embedded default machine (builtin:table1: 3 channels x 3 paths,
+// 8 kHz) with 8192-sample blocks of the simulated healthy Table-1 gearbox, lighter than the
+// 12 x 12 reference workload of bench_reference. --reference: the reference workload instead
+// (tests/bench/reference_workload.h: 12 paths x 12 channels, 8 kHz, 16 000-sample blocks, MWI
+// K = 50, kurtogram depth 6, the 8001-bin FRF set). The set is written once, in the FRF set
+// format (core/io/frf_set_io.h), to the run's temporary directory, and every machine names that
+// directory: the daemon loads it from files and shares it (daemon/frf_registry.h).
 #include <signal.h>
 #include <unistd.h>
 
@@ -31,12 +35,14 @@
 #include <thread>
 #include <vector>
 
+#include "core/io/frf_set_io.h"
 #include "core/model/gear_train.h"
 #include "core/model/lumped_gearbox_model.h"
 #include "core/simulation/gearbox_simulator.h"
 #include "daemon/daemon_config.h"
 #include "idl/dds/gearpath_topics.h"
 #include "idl/dds/loopback_config_xml.h"
+#include "tests/bench/reference_workload.h"
 #include "tests/daemon/child_process.h"
 #include "tests/integration/wire_block.h"
 
@@ -81,6 +87,33 @@ double ProcessCpuSeconds(pid_t pid) {
   return static_cast<double>(utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
 }
 
+// CPU seconds of every thread of `pid` (/proc/<pid>/task), by thread id, with its name (Cyclone
+// names its threads; the daemon's workers and reader keep the process name).
+std::map<int, std::pair<std::string, double>> ThreadCpuSeconds(pid_t pid) {
+  std::map<int, std::pair<std::string, double>> out;
+  const std::filesystem::path task = "/proc/" + std::to_string(pid) + "/task";
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(task, ec)) {
+    std::ifstream in(entry.path() / "stat");
+    std::string all((std::istreambuf_iterator<char>(in)), {});
+    const auto open = all.find('(');
+    const auto close = all.rfind(')');
+    if (open == std::string::npos || close == std::string::npos) continue;
+    std::istringstream s(all.substr(close + 2));
+    std::string field;
+    unsigned long long utime = 0, stime = 0;
+    for (int i = 3; i <= 15; ++i) {
+      s >> field;
+      if (i == 14) utime = std::stoull(field);
+      if (i == 15) stime = std::stoull(field);
+    }
+    out[std::stoi(entry.path().filename().string())] = {
+        all.substr(open + 1, close - open - 1),
+        static_cast<double>(utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK))};
+  }
+  return out;
+}
+
 std::string StatusField(pid_t pid, const std::string& key) {
   std::ifstream in("/proc/" + std::to_string(pid) + "/status");
   std::string line;
@@ -101,12 +134,19 @@ double Percentile(std::vector<double> v, double p) {
 int main(int argc, char** argv) {
   int machines = 64, blocks = 10, workers = 0;
   double period = 2.0;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  bool reference = false;
+  for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "--reference") {
+      reference = true;
+      continue;
+    }
+    if (i + 1 >= argc) break;
     if (a == "--machines") machines = std::stoi(argv[i + 1]);
     if (a == "--period") period = std::stod(argv[i + 1]);
     if (a == "--blocks") blocks = std::stoi(argv[i + 1]);
     if (a == "--workers") workers = std::stoi(argv[i + 1]);
+    ++i;
   }
   const int pid = static_cast<int>(getpid());
   const int domain_id = 150 + pid % 80;
@@ -116,7 +156,24 @@ int main(int argc, char** argv) {
   config["daemon"]["log_level"] = "warn";
   config["daemon"]["workers"] = workers;
   config["dds"]["domain_id"] = domain_id;
-  const nlohmann::json one = config["machines"][0];
+  nlohmann::json one = config["machines"][0];
+  const std::uint32_t block_length = reference ? 16000 : 8192;
+  FrfSet reference_set;
+  if (reference) {
+    // The reference workload's FRF set, written once; every machine loads this directory.
+    reference_set = reference::ReferenceFrfSet(12, 12);
+    const auto frf_dir = dir / "reference_frf";
+    if (Status st = WriteFrfSet(reference_set, frf_dir); !st) {
+      std::fprintf(stderr, "writing the reference FRF set: %s\n", st.error().c_str());
+      return 1;
+    }
+    one["frf_set"] = frf_dir.string();
+    one["description"] = "the reference workload of issue 9 (tests/bench/reference_workload.h)";
+    one["nominal_speed_hz"] = reference::kSpeedHz;
+    one["acquisition"]["sample_rate_hz"] = reference::kFs;
+    one["analysis"]["inverse"]["iterations"] = 50;
+    one["analysis"]["envelope"]["kurtogram_max_level"] = 6;
+  }
   config["machines"] = nlohmann::json::array();
   auto id_of = [](int i) {
     char id[16];
@@ -126,7 +183,7 @@ int main(int argc, char** argv) {
   for (int i = 0; i < machines; ++i) {
     nlohmann::json m = one;
     m["id"] = id_of(i);
-    m["acquisition"]["prepare_samples_per_channel"] = nlohmann::json::array({8192});
+    m["acquisition"]["prepare_samples_per_channel"] = nlohmann::json::array({block_length});
     config["machines"].push_back(m);
   }
   const std::string config_path = (dir / "gearpathd.json").string();
@@ -146,10 +203,16 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::vector<dds::Owned<gearpath_AccelBlock>> wire(4);
-  for (auto& w : wire) {
+  for (std::size_t k = 0; k < wire.size(); ++k) {
     AccelBlock b;
-    sim->NextBlock(b);
-    if (!testing::ToWire(b, w)) return 1;
+    if (reference) {
+      reference::BlockVariant v;
+      v.noise_seed = 7 + k;  // four blocks with their own noise
+      b = reference::ReferenceBlock(reference_set, block_length, v);
+    } else {
+      sim->NextBlock(b);
+    }
+    if (!testing::ToWire(b, wire[k])) return 1;
   }
 
   const auto build_start = Clock::now();
@@ -210,6 +273,7 @@ int main(int argc, char** argv) {
 
   const CpuTimes cpu0 = ReadCpu();
   const double daemon_cpu0 = ProcessCpuSeconds(gearpathd.pid());
+  const auto threads0 = ThreadCpuSeconds(gearpathd.pid());
   const auto t0 = Clock::now();
   std::size_t write_failures = 0;
   for (int r = 0; r < blocks; ++r) {
@@ -231,6 +295,7 @@ int main(int argc, char** argv) {
   const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
   const CpuTimes cpu1 = ReadCpu();
   const double daemon_cpu = ProcessCpuSeconds(gearpathd.pid()) - daemon_cpu0;
+  const auto threads1 = ThreadCpuSeconds(gearpathd.pid());
   const std::string rss = StatusField(gearpathd.pid(), "VmRSS:");
   const std::string hwm = StatusField(gearpathd.pid(), "VmHWM:");
   // The daemon's own account, per machine, once a status period has passed after the last
@@ -269,6 +334,9 @@ int main(int argc, char** argv) {
     ++drop_lines;
   }
 
+  std::printf("workload: %s\n",
+              reference ? "reference (12 x 12, 8 kHz, 16000 samples, 8001-bin FRF set from files)"
+                        : "builtin:table1 (3 x 3, 8 kHz, 8192 samples)");
   std::printf("machines %d, one block each per %.2f s, %d blocks each (%zu), workers %s\n",
               machines, period, blocks, expected,
               workers == 0 ? "0 (hardware threads)" : std::to_string(workers).c_str());
@@ -290,7 +358,13 @@ int main(int argc, char** argv) {
     const double total = static_cast<double>(cpu1.cores[c].second - cpu0.cores[c].second);
     std::printf(" cpu%zu %.0f %% busy;", c, total > 0 ? 100.0 * busy / total : 0.0);
   }
-  std::printf(" (whole host, other jobs included)\ngearpathd RSS %s (peak %s)\n", rss.c_str(),
+  std::printf(" (whole host, other jobs included)\ngearpathd threads over 0.02 cores:");
+  for (const auto& [tid, t] : threads1) {
+    const auto before = threads0.find(tid);
+    const double used = t.second - (before != threads0.end() ? before->second.second : 0.0);
+    if (used / wall >= 0.02) std::printf(" %s[%d] %.2f;", t.first.c_str(), tid, used / wall);
+  }
+  std::printf("\ngearpathd RSS %s (peak %s)\n", rss.c_str(),
               hwm.c_str());
   std::filesystem::remove_all(dir);
   return 0;

@@ -10,6 +10,7 @@
 // The FRF set, the block and the set-up are tests/bench/reference_workload.h (shared with the
 // recorded-figures regression test).
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
 #include <chrono>
 #include <complex>
@@ -174,28 +175,83 @@ BENCHMARK(BM_ReferenceIdentify)->ArgName("figures")->Arg(0)->Arg(1)->Unit(benchm
 
 // A machine's first block after Create + Prepare (as the daemon does at start and before a
 // reload's swap), against BM_ReferenceBlock's later blocks: the precompute is not timed, the
-// first Process() is (the bar: it costs no more than a normal block).
+// first Process() is (the bar: it costs no more than a normal block). block:0 is a new machine's
+// first block (it learns, and takes the machine's one tracking decision, MachineState::
+// order_tracking_mode); block:1 times its second block instead (the first processed untimed),
+// a learning block like it; block:2 is the first block after a reload: the new processor
+// imports what a machine past its baseline learned (as the daemon's reload and a start with a
+// state directory do), so it is a scored block like BM_ReferenceBlock's. Counters: the minor
+// page faults of the timed block (getrusage) and each stage's wall time in it, in ms (as
+// BM_ReferenceStages).
 void BM_ReferenceFirstBlock(benchmark::State& state) {
   const MachineSetup setup = ReferenceSetup(12, 0);
   AccelBlock block = ReferenceBlock(setup.frf_set, 16000, false);
-  block.sequence = 1;
-  for (auto _ : state) {
-    state.PauseTiming();
-    auto processor = BlockProcessor::Create(setup);
-    if (!processor.ok() || !processor->Prepare(16000).ok()) {
+  const int variant = static_cast<int>(state.range(0));
+  LearnedState learned;
+  std::uint64_t seq = 0;
+  if (variant == 2) {
+    auto warm = BlockProcessor::Create(setup);
+    if (!warm.ok() || !warm->Prepare(16000).ok()) {
       state.SkipWithError("create / prepare");
       return;
     }
+    BlockResult r;
+    for (int i = 0; i < 21; ++i) {
+      block.sequence = ++seq;
+      (void)warm->Process(block.view(), r);
+    }
+    learned = warm->ExportLearnedState();
+  }
+  double faults = 0.0;
+  std::vector<double> stage_ms;
+  std::vector<std::string> stage_names;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto processor = BlockProcessor::Create(setup);
+    if (!processor.ok() || !processor->Prepare(16000).ok() ||
+        (variant == 2 && !processor->ImportLearnedState(learned).ok())) {
+      state.SkipWithError("create / prepare / import");
+      return;
+    }
     BlockResult result;
+    block.sequence = variant == 2 ? seq + 1 : 1;
+    if (variant == 1) {
+      (void)processor->Process(block.view(), result);
+      block.sequence = 2;
+    }
+    processor->set_stage_timing(true);
+    rusage before{};
+    getrusage(RUSAGE_SELF, &before);
     state.ResumeTiming();
     const ProcessOutcome o = processor->Process(block.view(), result);
     benchmark::DoNotOptimize(o.reason);
     state.PauseTiming();
+    rusage after{};
+    getrusage(RUSAGE_SELF, &after);
+    faults += static_cast<double>(after.ru_minflt - before.ru_minflt);
+    const auto times = processor->stage_times();
+    stage_ms.resize(times.size(), 0.0);
+    stage_names.resize(times.size());
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      stage_names[i] = std::string(times[i].stage);
+      stage_ms[i] += 1e3 * times[i].total_s;
+    }
     processor = Error{"released untimed"};
     state.ResumeTiming();
   }
+  const auto iterations = static_cast<double>(state.iterations());
+  state.counters["page_faults"] = faults / iterations;
+  for (std::size_t i = 0; i < stage_ms.size(); ++i) {
+    if (stage_ms[i] > 0.0) state.counters[stage_names[i] + "_ms"] = stage_ms[i] / iterations;
+  }
 }
-BENCHMARK(BM_ReferenceFirstBlock)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_ReferenceFirstBlock)
+    ->ArgName("block")
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
 
 // Create + Prepare of the reference machine (the precompute before READY=1). Its per-bin
 // operators are built on every hardware thread: the CPU time is that of every thread (the

@@ -111,6 +111,13 @@ TEST(BlockProcessorTest, ContributionsOfAllPathsReproduceTheMeasuredChannel) {
   ASSERT_EQ(dominant.size(), kBlock);
   for (std::size_t i = 0; i < kBlock; ++i) EXPECT_DOUBLE_EQ(dominant[i], one[i]);
   EXPECT_TRUE(p->DominantPathSignal(3).empty());  // no such channel
+  // Every channel on request, one at a time (each call for another channel makes its signal).
+  for (std::size_t c : {0, 2, 1}) {
+    ASSERT_TRUE(p->PathSignal(static_cast<std::size_t>(r.dominant_path), c, one));
+    const std::span<const double> at = p->DominantPathSignal(c);
+    ASSERT_EQ(at.size(), kBlock);
+    for (std::size_t i = 0; i < kBlock; ++i) ASSERT_DOUBLE_EQ(at[i], one[i]) << c << " " << i;
+  }
   double shares = 0.0;
   for (const BlockPathShare& s : r.paths) shares += s.share;
   EXPECT_NEAR(shares, 1.0, 1e-12);
@@ -138,6 +145,34 @@ TEST(BlockProcessorTest, AllocatesNothingOnceTheBlockShapeIsConfigured) {
   EXPECT_TRUE(o.accepted());
   EXPECT_GT(r.score.limit_z, 0.0);
   EXPECT_EQ(r.verdict.state, FaultState::kAlarm) << r.verdict.reason.view();
+  EXPECT_EQ(after - before, 0);
+}
+
+// Prepare() does all of a shape's configuring (what the daemon runs at load, before READY=1):
+// a machine's very first block after it allocates nothing either, given a result that has been
+// filled before (a BlockResult sizes its own vectors on its first use, by any processor of the
+// same machine).
+TEST(BlockProcessorTest, AllocatesNothingInTheFirstBlockAfterPrepare) {
+  const MachineSetup setup = MakeSetup(Table1Machine());
+  GearboxSimulator sim = MakeSimulator(Table1Machine(), FaultType::kNone, "", 3);
+  AccelBlock block;
+  sim.NextBlock(block);
+  block.sequence = 1;
+  BlockResult r;
+  {
+    auto earlier = BlockProcessor::Create(setup);
+    ASSERT_TRUE(earlier.ok()) << earlier.error();
+    ASSERT_TRUE(earlier->Process(block.view(), r).accepted());
+  }
+  auto p = BlockProcessor::Create(setup);
+  ASSERT_TRUE(p.ok()) << p.error();
+  ASSERT_TRUE(p->Prepare(kBlock).ok());
+  ASSERT_TRUE(p->configured_for(kBlock));
+  const long before = g_allocations.load();
+  const ProcessOutcome o = p->Process(block.view(), r);
+  const long after = g_allocations.load();
+  EXPECT_TRUE(o.accepted()) << o.message.view();
+  EXPECT_EQ(r.verdict.state, FaultState::kLearning);
   EXPECT_EQ(after - before, 0);
 }
 
