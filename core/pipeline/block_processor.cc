@@ -99,7 +99,7 @@ Status InitialiseState(const MachineContext& m, MachineState& st) {
   // limit). A Gaussian indicator's largest of 20 deviations passes 3 sigma in ~5 % of baselines,
   // so the guard seldom binds there; a heavy-tailed one (M6A, M8A under bursts) gets the spread
   // its tail shows. At clear_level x limit (~4) it left 3.0 % of the healthy evaluation blocks
-  // of 400 tuning scenarios over the limit; at 3, 2.0 % (docs/diagnosis.md section 10).
+  // of 400 tuning scenarios over the limit; at 3, 2.3 % (docs/diagnosis.md section 10).
   constexpr double kTailGuardZ = 3.0;
   bo.tail_z = o.tail_guard ? kTailGuardZ : 0.0;
   auto baseline = RobustBaseline::Create(m.indicator_count, bo);

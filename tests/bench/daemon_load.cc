@@ -73,10 +73,12 @@ CpuTimes ReadCpu() {
   return t;
 }
 
-double ProcessCpuSeconds(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string all((std::istreambuf_iterator<char>(in)), {});
-  std::istringstream s(all.substr(all.rfind(')') + 2));
+// User + system CPU seconds from the text of a /proc/<pid>/stat or /proc/<pid>/task/<tid>/stat
+// file (fields 14 and 15, counted after the parenthesised name, which may hold spaces).
+double StatCpuSeconds(const std::string& stat) {
+  const auto close = stat.rfind(')');
+  if (close == std::string::npos || close + 2 > stat.size()) return 0.0;
+  std::istringstream s(stat.substr(close + 2));
   std::string field;
   unsigned long long utime = 0, stime = 0;
   for (int i = 3; i <= 15; ++i) {
@@ -87,6 +89,15 @@ double ProcessCpuSeconds(pid_t pid) {
   return static_cast<double>(utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
 }
 
+std::string ReadAll(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+double ProcessCpuSeconds(pid_t pid) {
+  return StatCpuSeconds(ReadAll("/proc/" + std::to_string(pid) + "/stat"));
+}
+
 // CPU seconds of every thread of `pid` (/proc/<pid>/task), by thread id, with its name (Cyclone
 // names its threads; the daemon's workers and reader keep the process name).
 std::map<int, std::pair<std::string, double>> ThreadCpuSeconds(pid_t pid) {
@@ -94,22 +105,12 @@ std::map<int, std::pair<std::string, double>> ThreadCpuSeconds(pid_t pid) {
   const std::filesystem::path task = "/proc/" + std::to_string(pid) + "/task";
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(task, ec)) {
-    std::ifstream in(entry.path() / "stat");
-    std::string all((std::istreambuf_iterator<char>(in)), {});
+    const std::string all = ReadAll(entry.path() / "stat");
     const auto open = all.find('(');
     const auto close = all.rfind(')');
     if (open == std::string::npos || close == std::string::npos) continue;
-    std::istringstream s(all.substr(close + 2));
-    std::string field;
-    unsigned long long utime = 0, stime = 0;
-    for (int i = 3; i <= 15; ++i) {
-      s >> field;
-      if (i == 14) utime = std::stoull(field);
-      if (i == 15) stime = std::stoull(field);
-    }
-    out[std::stoi(entry.path().filename().string())] = {
-        all.substr(open + 1, close - open - 1),
-        static_cast<double>(utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK))};
+    out[std::stoi(entry.path().filename().string())] = {all.substr(open + 1, close - open - 1),
+                                                         StatCpuSeconds(all)};
   }
   return out;
 }
