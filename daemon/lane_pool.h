@@ -61,7 +61,8 @@ class LanePool {
   std::size_t workers() const noexcept { return threads_.size(); }
 
   // Makes `lane` known; at most `lanes` lanes may be attached at once (sizes the ready ring).
-  // Call while paused (or before any Offer).
+  // Call while paused (or before any Offer). The lane must outlive the pool or be detached
+  // while paused: a worker still reads it after its handler returns.
   void Attach(Lane& lane, std::size_t lanes) {
     std::lock_guard lock(mutex_);
     if (ready_.size() < lanes) Regrow(lanes);

@@ -51,6 +51,9 @@ TEST(LanePoolTest, InterleavedItemsOfManyLanesAllArriveInOrderOneWorkerPerLaneAt
   constexpr int kLanes = 24;
   constexpr int kItems = 200;
   Done done;
+  // Lanes before the pool: the pool is destroyed first, so its workers (which touch a lane
+  // after its handler returns) are joined while every lane still exists.
+  std::vector<std::unique_ptr<TestLane>> lanes;
   LanePool<Item> pool(4, 64, [&](std::size_t, LanePool<Item>::Lane& l, Item& item) {
     auto& lane = static_cast<TestLane&>(l);
     if (lane.in_handler.fetch_add(1) != 0) lane.overlapped = true;
@@ -60,7 +63,6 @@ TEST(LanePoolTest, InterleavedItemsOfManyLanesAllArriveInOrderOneWorkerPerLaneAt
     lane.in_handler.fetch_sub(1);
     done.Add();
   });
-  std::vector<std::unique_ptr<TestLane>> lanes;
   for (int l = 0; l < kLanes; ++l) {
     lanes.push_back(std::make_unique<TestLane>(kItems));  // roomy: nothing is dropped here
     lanes.back()->seen.reserve(kItems);
@@ -90,8 +92,8 @@ TEST(LanePoolTest, InterleavedItemsOfManyLanesAllArriveInOrderOneWorkerPerLaneAt
 
 TEST(LanePoolTest, AFullLaneRefusesWithoutBlockingAndAPausedPoolHandlesNothing) {
   Done done;
-  LanePool<Item> pool(2, 8, [&](std::size_t, LanePool<Item>::Lane&, Item&) { done.Add(); });
   TestLane lane(3);
+  LanePool<Item> pool(2, 8, [&](std::size_t, LanePool<Item>::Lane&, Item&) { done.Add(); });
   pool.Attach(lane, 1);
   pool.Pause();
   Item item;
@@ -112,8 +114,8 @@ TEST(LanePoolTest, AFullLaneRefusesWithoutBlockingAndAPausedPoolHandlesNothing) 
 
 TEST(LanePoolTest, WaitForRoomReturnsOnceAWorkerTookAnItemOfTheFullLane) {
   Done done;
-  LanePool<Item> pool(1, 8, [&](std::size_t, LanePool<Item>::Lane&, Item&) { done.Add(); });
   TestLane lane(2);
+  LanePool<Item> pool(1, 8, [&](std::size_t, LanePool<Item>::Lane&, Item&) { done.Add(); });
   pool.Attach(lane, 1);
   pool.Pause();
   Item item;
@@ -133,8 +135,8 @@ TEST(LanePoolTest, WaitForRoomReturnsOnceAWorkerTookAnItemOfTheFullLane) {
 
 TEST(LanePoolTest, ADetachedLaneGivesBackWhatItHeldAndIsNotServedAnyMore) {
   Done done;
-  LanePool<Item> pool(2, 8, [&](std::size_t, LanePool<Item>::Lane&, Item&) { done.Add(); });
   TestLane kept(4), removed(4);
+  LanePool<Item> pool(2, 8, [&](std::size_t, LanePool<Item>::Lane&, Item&) { done.Add(); });
   pool.Attach(kept, 2);
   pool.Attach(removed, 2);
   pool.Pause();
