@@ -16,6 +16,7 @@ Status LocalisationStage::Configure(const MachineContext& machine, BlockWorkspac
     return Error{"localisation: more than 31 gears in the train"};
   }
   group_excess_.assign(machine.rate_groups.size(), 0.0);
+  group_clear_.assign(machine.rate_groups.size(), 0);
   return Status::Ok();
 }
 
@@ -80,14 +81,22 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
 
   // This block's shaft evidence: per group the EXCLUSIVE residual energy's rise over healthy,
   // summed over the measured channels (the same unit for every group; a fault's comb is whole
-  // only at its own shaft's rate).
+  // only at its own shaft's rate). A group's rise counts only when one of its channels rose
+  // clearly (z >= kShaftEvidenceZ): half of all healthy blocks sit above the median, so an
+  // ungated sum let noise name the shaft whenever the fault's comb did not reach the exclusive
+  // orders, and the block's score never decided (docs/diagnosis.md section 11).
   std::fill(group_excess_.begin(), group_excess_.end(), 0.0);
+  std::fill(group_clear_.begin(), group_clear_.end(), 0);
   for (std::size_t s = 0; s < m.condition_slots.size(); ++s) {
     const ConditionSlot& cs = m.condition_slots[s];
     if (!w.slot_valid[s] || m.condition_signals[cs.signal].source != ConditionSource::kMeasured) {
       continue;
     }
     group_excess_[cs.group] += w.excess[m.tracked_offset + s];  // exclusive residual (tracked)
+    if (w.z[m.tracked_offset + s] >= kShaftEvidenceZ) group_clear_[cs.group] = 1;
+  }
+  for (std::size_t g = 0; g < groups; ++g) {
+    if (!group_clear_[g]) group_excess_[g] = 0.0;
   }
   // The shaft evidence accumulates over the blocks at or above the clear level (a fault's
   // blocks) and decays by half on each quiet block, so one block's noisy evidence cannot name
@@ -100,8 +109,8 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
     total_excess += sum;
   }
 
-  // 1. The rate group: the largest accumulated exclusive-residual rise; by z-score when
-  // nothing rose.
+  // 1. The rate group: the largest accumulated clear exclusive-residual rise; by the groups'
+  // scores when none rose clearly.
   std::size_t g = 0;
   for (std::size_t i = 1; i < groups; ++i) {
     if (st.group_excess_sum[i] > st.group_excess_sum[g]) g = i;

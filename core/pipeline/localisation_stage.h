@@ -2,8 +2,9 @@
 // physical facts"; docs/diagnosis.md):
 //  1. The SHAFT: the rate group whose EXCLUSIVE residual energy (orders of its rate that are
 //     no harmonic of another rate) rose most over healthy, summed over the measured channels
-//     (one unit for every group; a fault's comb is whole only at its own shaft's rate); by
-//     z-score when nothing rose. Shafts at equal rates cannot be told apart by rate, so the
+//     (one unit for every group; a fault's comb is whole only at its own shaft's rate),
+//     counting a group only when one of its channels rose clearly (z >= 3); by the groups'
+//     scores when none did. Shafts at equal rates cannot be told apart by rate, so the
 //     group is named, not one shaft.
 //  2. The MESH, when the group's gears sit on several meshes: by transfer signature
 //     (core/diagnosis/mesh_signature.h). A tooth fault on mesh m adds sideband energy that
@@ -27,6 +28,7 @@
 //     same mesh (seed Table 1's G3 and G4) remain joint candidates: nothing separates them.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "core/pipeline/pipeline_stage.h"
@@ -40,7 +42,11 @@ class LocalisationStage final : public PipelineStage {
   RejectReason Process(StageContext& ctx) noexcept override;
 
  private:
-  std::vector<double> group_excess_;  // per rate group, this block
+  // A group's exclusive-residual rise is shaft evidence only when one of its measured channels'
+  // robust z reaches this (the tail guard's level: clearly outside the healthy spread).
+  static constexpr double kShaftEvidenceZ = 3.0;
+  std::vector<double> group_excess_;        // per rate group, this block
+  std::vector<std::uint8_t> group_clear_;   // per rate group: a channel rose clearly
 };
 
 }  // namespace gearpath

@@ -30,9 +30,10 @@ namespace {
 // 120 healthy evaluation blocks): with the two-block score, the reconstructed envelope
 // indicators out of the score and the mesh from the orthogonal signature rise, detection
 // 84/96, right gear 67/96, 0/120 false alarms; the tail guard at z = 3 and the raw envelope
-// indicators out of the score left all three unchanged.
+// indicators out of the score left all three unchanged; the shaft evidence gate (a group's
+// exclusive-residual rise counts only at z >= 3) right gear 68/96.
 constexpr double kDocumentedDetection = 0.875;
-constexpr double kDocumentedRightGear = 0.698;
+constexpr double kDocumentedRightGear = 0.708;
 constexpr double kDocumentedFalseAlarmsPerBlock = 0.0;
 constexpr double kMargin = 0.05;
 

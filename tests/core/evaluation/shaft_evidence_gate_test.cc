@@ -1,0 +1,54 @@
+// The shaft evidence gate (docs/diagnosis.md section 11): a rate group's exclusive-residual rise
+// names the shaft only when one of its measured channels rose clearly (z >= 3). Ungated, the
+// noise-level rises that half of all blocks show named the shaft whenever the fault's comb
+// stayed off the exclusive orders; the scores never decided.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/evaluation/evaluation_runner.h"
+#include "core/evaluation/scenario_matrix.h"
+#include "tests/core/evaluation/scenario_of.h"
+
+namespace gearpath {
+namespace {
+
+// Tuning-matrix scenarios, one per family, whose verdicts named another shaft before the gate
+// (G1 for the pulse on G2; G1 and G3 for the modulation on G4; G1 for the wear on G4). Each
+// must now name the true gear in most of its evaluation blocks, and every alarmed block its
+// shaft.
+TEST(ShaftEvidenceGate, NoiseLevelRisesDoNotNameTheShaft) {
+  struct Case {
+    Scenario scenario;
+    const char* shaft;
+  };
+  const Case cases[] = {
+      {testing::ScenarioOf(PlantFamily::kLumpedPerturbed, TrainVariant::kDistinct,
+                           PlantFaultKind::kTePulse, "G2", 300.0, 0.10, ChannelSet::kSeats, true),
+       "intermediate"},
+      {testing::ScenarioOf(PlantFamily::kModalHousing, TrainVariant::kDistinct,
+                           PlantFaultKind::kMeshAm, "G4", 900.0, 0.10, ChannelSet::kSeats, false),
+       "output"},
+      {testing::ScenarioOf(PlantFamily::kLumpedTorsional, TrainVariant::kDistinct,
+                           PlantFaultKind::kWearDip, "G4", 450.0, 0.02, ChannelSet::kSeats, true),
+       "output"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.scenario.Key());
+    const ScenarioOutcome out = RunScenario(c.scenario);
+    ASSERT_TRUE(out.error.empty()) << out.error;
+    EXPECT_TRUE(out.score.detected);
+    EXPECT_TRUE(out.score.right_gear);
+    int alarmed = 0;
+    int named = 0;
+    for (const BlockVerdictRecord& v : out.verdicts) {
+      if (v.state != FaultState::kSuspected && v.state != FaultState::kAlarm) continue;
+      ++alarmed;
+      named += v.shaft == c.shaft ? 1 : 0;
+    }
+    EXPECT_EQ(named, alarmed) << "alarmed blocks naming the " << c.shaft << " shaft";
+  }
+}
+
+}  // namespace
+}  // namespace gearpath
