@@ -9,10 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <complex>
-#include <ctime>
 #include <map>
 #include <numbers>
 
@@ -478,25 +476,6 @@ TEST(ParametricPlantSimulator, SpeedDriftDrivesTheInputAngle) {
   const double j0 = std::cyl_bessel_j(0.0, beta);
   EXPECT_NEAR(carrier[1] / carrier[0], j0 * j0, 0.03) << "beta " << beta;
   EXPECT_LT(carrier[1] / carrier[0], 0.8);
-}
-
-TEST(ParametricPlantSimulator, ScenarioCostStaysWithinTheBudget) {
-  // A faulty scenario's stream: 20 healthy blocks, the severity fit, 5 faulty blocks of 8192
-  // samples (the daemon's processing is not included here).
-  const std::clock_t start = std::clock();
-  ParametricSimulatorConfig c;
-  c.input_speed_hz = 15.0;
-  c.noise_relative = 0.05;
-  c.tones = c.bursts = c.speed_drift = true;
-  Rig rig = MakeRig(31, PlantFaultKind::kCombined, "G2", c);
-  AccelBlock block;
-  for (int b = 0; b < kBaselineBlocks + kEvaluationBlocks; ++b) {
-    if (b == kBaselineBlocks) rig.sim->NormaliseSeverity(0.03);
-    rig.sim->NextBlock(b >= kBaselineBlocks, block);
-  }
-  const double cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-  std::printf("parametric_plate stream, 25 blocks + severity fit: %.2f s CPU\n", cpu);
-  EXPECT_LT(cpu, 6.0);  // budget ~1.5 s; generous for a loaded shared machine
 }
 
 TEST(ParametricPlantSimulator, RejectsBadConfigByName) {
