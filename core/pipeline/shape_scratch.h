@@ -93,8 +93,7 @@ struct ShapeScratch {
 
   // Plans and sizes everything for `machine`'s blocks of n samples. Allocates (FFTW's planner
   // runs under FftPlan's lock).
-  static Result<std::unique_ptr<ShapeScratch>> Create(const MachineContext& machine,
-                                                      std::size_t n);
+  static Result<std::unique_ptr<ShapeScratch>> Create(const MachineContext& machine, std::size_t n);
 
   // True when this area serves `machine` (whose key is `key`) without allocating.
   bool Serves(const ShapeScratchKey& machine_key, const MachineContext& machine) const noexcept;
