@@ -11,6 +11,7 @@
 #include <span>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "daemon/dds_bridge.h"
 #include "daemon/dds_setup.h"
@@ -97,6 +98,8 @@ struct MachineLane : BlockLanes::Lane {
 // What a worker fills and publishes: its own, so workers share no sample and allocate nothing
 // per block once the samples are sized.
 struct WorkerScratch {
+  // The processing scratch lent to whichever machine the worker runs (block_scratch.h).
+  BlockScratch block;
   std::vector<ChannelInfo> channels;
   dds::Owned<gearpath_DominantPath> dominant;
   dds::Owned<gearpath_SuspectedGear> gear;
@@ -348,8 +351,16 @@ void Gearpathd::Impl::Adopt(Generation generation) {
                  "{} worker(s), {} block(s) per machine",
                  workers, queue_capacity);
   }
+  // The workers' processing scratch for the new machines, made before the pause (no worker
+  // sees it yet) and swapped in during it: every machine's first block allocates nothing, and
+  // the areas of shapes no longer configured go with the old scratch.
+  std::vector<BlockScratch> block_scratch(workers);
+  if (Status st = PrepareWorkerScratch(generation.machines, block_scratch); !st) {
+    spdlog::warn("{}; the first such block configures it", st.error());
+  }
   // No block is processed while the machines change hands; blocks queued meanwhile wait.
   pool->Pause();
+  for (std::size_t w = 0; w < workers; ++w) std::swap(scratch[w].block, block_scratch[w]);
   std::lock_guard metrics_view(metrics_view_mutex);
   MachineSet previous = std::move(machines);
   machines = std::move(generation.machines);
@@ -686,7 +697,7 @@ void Gearpathd::Impl::HandleBlock(WorkerScratch& ws, MachineLane& lane, QueuedBl
   MachineCounters& c = lane.counters;  // written under counters_mutex: Status reads it
   if (block.dropped_before > 0) CountDrops(lane, block.dropped_before, sample.sequence_number);
   const AccelBlockView view = dds::ViewOfWireBlock(sample, ws.channels);
-  const ProcessOutcome outcome = m.processor.Process(view, m.result);
+  const ProcessOutcome outcome = m.processor.Process(view, m.result, ws.block);
   if (!outcome.accepted()) {
     const std::string_view reason = ToString(outcome.reason);
     bool log = false;

@@ -64,9 +64,14 @@ Status PrepareMachines(const DaemonConfig& config, MachineSet& set) {
   }
   std::atomic<std::size_t> next{0};
   auto work = [&] {
+    // Checks that each machine's scratch can be made; the workers' own are readied later
+    // (PrepareWorkerScratch), so no processor keeps a scratch of its own.
+    BlockScratch scratch;
     for (std::size_t i = next++; i < per_machine.size(); i = next++) {
       for (Job* job : per_machine[i]) {
-        if (Status st = job->machine->processor.Prepare(job->samples); !st) job->error = st.error();
+        if (Status st = job->machine->processor.Prepare(job->samples, scratch); !st) {
+          job->error = st.error();
+        }
       }
     }
   };
@@ -82,6 +87,7 @@ Status PrepareMachines(const DaemonConfig& config, MachineSet& set) {
                                job.config->key_path, job.samples, job.error)};
     }
   }
+  for (const Job& job : jobs) job.machine->prepared_samples.push_back(job.samples);
   return Status::Ok();
 }
 
@@ -105,13 +111,27 @@ Result<MachineSet> BuildMachines(const DaemonConfig& config,
       return Error{fmt::format("{} (machine \"{}\"): {}", machine.key_path, machine.id,
                                processor.error())};
     }
-    auto runtime = std::unique_ptr<MachineRuntime>(
-        new MachineRuntime{machine.id, std::move(summary), std::move(processor.value()), {}, {}});
+    auto runtime = std::unique_ptr<MachineRuntime>(new MachineRuntime{
+        machine.id, std::move(summary), std::move(processor.value()), {}, {}, {}});
     runtime->indicator_names = IndicatorNamesOf(runtime->processor);
     set.machines.emplace(machine.id, std::move(runtime));
   }
   if (Status st = PrepareMachines(config, set); !st) return Error{st.error()};
   return set;
+}
+
+Status PrepareWorkerScratch(MachineSet& set, std::span<BlockScratch> scratch) {
+  for (BlockScratch& s : scratch) {
+    for (auto& [id, machine] : set.machines) {
+      for (std::uint32_t n : machine->prepared_samples) {
+        if (Status st = machine->processor.Prepare(n, s); !st) {
+          return Error{fmt::format("machine \"{}\": worker scratch for {} samples: {}", id, n,
+                                   st.error())};
+        }
+      }
+    }
+  }
+  return Status::Ok();
 }
 
 }  // namespace gearpath::daemon

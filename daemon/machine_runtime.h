@@ -17,6 +17,7 @@
 
 #include "core/common/result.h"
 #include "core/pipeline/block_processor.h"
+#include "core/pipeline/block_scratch.h"
 #include "daemon/daemon_config.h"
 #include "daemon/frf_registry.h"
 #include "daemon/latency_histogram.h"
@@ -29,6 +30,9 @@ struct MachineRuntime {
   std::string summary;  // one line for the start-up log: FRF shape, band, paths, method
   BlockProcessor processor;
   BlockResult result;   // reused block after block (allocation-free once sized)
+  // acquisition.prepare_samples_per_channel: the lengths configured at build, for which every
+  // worker's scratch is readied too (PrepareWorkerScratch).
+  std::vector<std::uint32_t> prepared_samples;
   // Names of each shaft-rate group's condition indicators (views into `processor`, whose
   // Impl does not move), for the ConditionIndicators topic.
   std::vector<std::span<const std::string>> indicator_names;
@@ -46,6 +50,12 @@ struct MachineSet {
 // machine's key. Without a registry a new one is made.
 Result<MachineSet> BuildMachines(const DaemonConfig& config,
                                  std::shared_ptr<FrfRegistry> registry = nullptr);
+
+// Readies each of `scratch` (one per worker thread) for every machine of `set` at each of its
+// prepared lengths (BlockProcessor::Prepare(n, scratch)): a machine's first block then
+// allocates nothing on whichever worker runs it. Machines of one shape share one area per
+// scratch. The scratch objects must not be in use meanwhile. Errors name the machine.
+Status PrepareWorkerScratch(MachineSet& set, std::span<BlockScratch> scratch);
 
 struct MachineCounters {
   std::uint64_t received = 0;

@@ -78,6 +78,7 @@ struct KurtogramOptions {
   int ar_order = 64;                 // AR whitening order, 1..block_length/4
   double taper_fraction = 0.1;       // Tukey taper share of the block, [0, 1]
   double significance_sigmas = 5.0;  // SK must exceed this many sigma to be `significant`
+  bool operator==(const KurtogramOptions&) const = default;
 };
 
 // A node of the 1/3-binary tree: binary level k has 2^k bands, ternary level k.6 (k >= 1) has

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/pipeline/alarm_stage.h"
+#include "core/pipeline/block_scratch.h"
 #include "core/pipeline/block_workspace.h"
 #include "core/pipeline/condition_indicator_stage.h"
 #include "core/pipeline/dominant_path_stage.h"
@@ -23,6 +24,7 @@
 #include "core/pipeline/machine_state.h"
 #include "core/pipeline/path_energy_stage.h"
 #include "core/pipeline/pipeline_stage.h"
+#include "core/pipeline/shape_scratch.h"
 #include "core/pipeline/shared_frf_operators.h"
 #include "core/pipeline/spectra_stage.h"
 #include "core/pipeline/speed_stage.h"
@@ -135,10 +137,12 @@ std::string_view ToString(ConditionSource source) noexcept {
   return "unknown";
 }
 
-// One block shape: its shared buffers and its configured stages.
+// One block shape of one machine: what the machine keeps for it (its workspace and its
+// configured stages) and the key of the scratch area it runs in.
 struct Shape {
   BlockWorkspace work;
   std::vector<std::unique_ptr<PipelineStage>> stages;
+  ShapeScratchKey scratch_key;
   std::uint64_t last_used = 0;
 };
 
@@ -186,6 +190,9 @@ struct BlockProcessor::Impl {
   bool timing = false;
   std::array<StageTime, kMaxStageTimes> times{};
   std::size_t time_entries = 0;
+  // The scratch of the two-argument Process() and of DominantPathSignal() / PathSignal(),
+  // made when first needed: a processor that only ever runs on lent scratch has none.
+  std::unique_ptr<BlockScratch> own_scratch;
 
   Shape* FindShape(std::size_t n) const noexcept {
     for (const auto& s : shapes) {
@@ -194,6 +201,9 @@ struct BlockProcessor::Impl {
     return nullptr;
   }
   Status Configure(std::size_t n);
+  // The own scratch's area for the last accepted block's shape, made when missing (allocates
+  // once); null when it cannot be made.
+  ShapeScratch* OwnAreaForLastShape() noexcept;
   void ResetLearning() noexcept;
 };
 
@@ -201,8 +211,11 @@ Status BlockProcessor::Impl::Configure(std::size_t n) {
   if (FindShape(n) != nullptr) return Status::Ok();
   auto work = BlockWorkspace::Create(machine, n);
   if (!work) return Error{work.error()};
+  auto key = ShapeScratchKey::Of(machine, n);
+  if (!key) return Error{key.error()};
   auto shape = std::make_unique<Shape>();
   shape->work = std::move(work.value());
+  shape->scratch_key = key.value();
   shape->stages = MakeStages();
   for (auto& stage : shape->stages) {
     Status st = stage->Configure(machine, shape->work);
@@ -218,6 +231,17 @@ Status BlockProcessor::Impl::Configure(std::size_t n) {
   }
   shapes.push_back(std::move(shape));
   return Status::Ok();
+}
+
+ShapeScratch* BlockProcessor::Impl::OwnAreaForLastShape() noexcept {
+  if (last_shape == nullptr) return nullptr;
+  try {
+    if (!own_scratch) own_scratch = std::make_unique<BlockScratch>();
+    auto area = own_scratch->Provide(last_shape->scratch_key, machine);
+    return area ? area.value() : nullptr;
+  } catch (const std::exception&) {
+    return nullptr;
+  }
 }
 
 void BlockProcessor::Impl::ResetLearning() noexcept {
@@ -265,7 +289,28 @@ Status BlockProcessor::Prepare(std::uint32_t samples_per_channel) {
                              e.max_samples_per_channel)};
   }
   try {
-    return impl_->Configure(samples_per_channel);
+    if (!impl_->own_scratch) impl_->own_scratch = std::make_unique<BlockScratch>();
+  } catch (const std::exception& ex) {
+    return Error{fmt::format("machine '{}': configuring for {} samples failed: {}", e.machine_id,
+                             samples_per_channel, ex.what())};
+  }
+  return Prepare(samples_per_channel, *impl_->own_scratch);
+}
+
+Status BlockProcessor::Prepare(std::uint32_t samples_per_channel, BlockScratch& scratch) {
+  const BlockExpectations& e = impl_->machine.expect;
+  if (samples_per_channel < e.min_samples_per_channel ||
+      samples_per_channel > e.max_samples_per_channel) {
+    return Error{fmt::format("machine '{}': {} samples per channel is outside {}..{}",
+                             e.machine_id, samples_per_channel, e.min_samples_per_channel,
+                             e.max_samples_per_channel)};
+  }
+  try {
+    if (Status st = impl_->Configure(samples_per_channel); !st) return st;
+    const Shape* shape = impl_->FindShape(samples_per_channel);
+    auto area = scratch.Provide(shape->scratch_key, impl_->machine);
+    if (!area) return Error{fmt::format("machine '{}': {}", e.machine_id, area.error())};
+    return Status::Ok();
   } catch (const std::exception& ex) {
     return Error{fmt::format("machine '{}': configuring for {} samples failed: {}", e.machine_id,
                              samples_per_channel, ex.what())};
@@ -277,6 +322,21 @@ bool BlockProcessor::configured_for(std::uint32_t samples_per_channel) const noe
 }
 
 ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult& out) noexcept {
+  if (!impl_->own_scratch) {
+    try {
+      impl_->own_scratch = std::make_unique<BlockScratch>();
+    } catch (const std::exception&) {
+      ProcessOutcome outcome;
+      outcome.reason = RejectReason::kNotConfigured;
+      outcome.message.Assign("no memory for the processor's scratch");
+      return outcome;
+    }
+  }
+  return Process(block, out, *impl_->own_scratch);
+}
+
+ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult& out,
+                                       BlockScratch& scratch) noexcept {
   ProcessOutcome outcome;
   Impl& im = *impl_;
   StageClock clock(im.timing ? &im.times : nullptr);
@@ -287,6 +347,7 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
   // The first block of a new length configures its shape (Prepare() does it ahead of time).
   const std::size_t n = block.samples_per_channel;
   Shape* shape = im.FindShape(n);
+  bool configured = false;
   if (shape == nullptr) {
     Status st = Status::Ok();
     try {
@@ -303,8 +364,29 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
       return outcome;
     }
     shape = im.FindShape(n);
-    clock.Lap(kConfigureTime);
+    configured = true;
   }
+  // The scratch area for this shape: made by the first block that needs it in this scratch
+  // (Prepare(n, scratch) does it ahead of time).
+  ShapeScratch* area = scratch.Find(shape->scratch_key, im.machine);
+  if (area == nullptr) {
+    try {
+      auto provided = scratch.Provide(shape->scratch_key, im.machine);
+      if (!provided) {
+        outcome.reason = RejectReason::kNotConfigured;
+        outcome.message.Format("cannot configure for %zu samples per channel: %s", n,
+                               provided.error().c_str());
+        return outcome;
+      }
+      area = provided.value();
+    } catch (const std::exception& e) {
+      outcome.reason = RejectReason::kNotConfigured;
+      outcome.message.Format("configuring for %zu samples per channel failed: %s", n, e.what());
+      return outcome;
+    }
+    configured = true;
+  }
+  if (configured) clock.Lap(kConfigureTime);
   const SequenceTracker::Verdict seq =
       im.state.tracker.Observe(block.sequence, im.machine.expect.machine_id, outcome.message);
   if (seq.reason != RejectReason::kNone) {
@@ -329,7 +411,7 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
   out.analysis_band_hi_hz = m.band_hi;
   clock.Lap(kValidationTime, /*more=*/true);  // the sequence and the result's bookkeeping
 
-  StageContext ctx{m, im.state, shape->work, block, out, outcome.message};
+  StageContext ctx{m, im.state, shape->work, *area, block, out, outcome.message};
   for (std::size_t i = 0; i < shape->stages.size(); ++i) {
     const RejectReason reason = shape->stages[i]->Process(ctx);
     if (kFirstStageTime + i < kMaxStageTimes) clock.Lap(kFirstStageTime + i);
@@ -343,12 +425,14 @@ ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult&
 }
 
 std::span<const double> BlockProcessor::DominantPathSignal(std::size_t channel) const noexcept {
-  const Impl& im = *impl_;
+  Impl& im = *impl_;
   if (im.last_shape == nullptr || im.last_shape->work.dominant < 0 ||
       channel >= im.machine.channels) {
     return {};
   }
-  return im.last_shape->work.DominantTime(channel);  // made on the first call for the channel
+  ShapeScratch* own = im.OwnAreaForLastShape();
+  if (own == nullptr) return {};
+  return im.last_shape->work.DominantTime(channel, *own);  // made on the first call for it
 }
 
 bool BlockProcessor::PathSignal(std::size_t path, std::size_t channel,
@@ -359,8 +443,10 @@ bool BlockProcessor::PathSignal(std::size_t path, std::size_t channel,
   }
   BlockWorkspace& w = im.last_shape->work;
   if (out.size() != w.n) return false;
-  w.Contribution(path, channel, w.one_spec);
-  return w.inverse->Process(w.one_spec, out).ok();
+  ShapeScratch* own = im.OwnAreaForLastShape();
+  if (own == nullptr) return false;
+  w.Contribution(path, channel, own->one_spec);
+  return own->inverse->Process(own->one_spec, out).ok();
 }
 
 bool BlockProcessor::ForceAmplitude(std::size_t path, std::span<double> out) const noexcept {

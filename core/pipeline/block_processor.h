@@ -25,10 +25,20 @@
 //  - The first baseline_blocks accepted blocks with a known speed are the machine's healthy
 //    baseline (the verdict is kLearning meanwhile; ResetBaseline() relearns).
 //
-// Thread-safety: one BlockProcessor per machine worker; Process() mutates internal buffers
-// and must not be called concurrently on the same instance. Different instances share
-// nothing but FFTW's planner, which core/dsp's FftPlan guards with one mutex (configuration
-// of different machines' processors may run concurrently).
+//  - Scratch: what lives only within one Process() call (the block's time signals and spectra,
+//    FFT plans, the envelope and condition-indicator stages' grids and buffers; ~13 MB for the
+//    reference workload) is a BlockScratch (block_scratch.h) the caller lends:
+//    Process(block, out, scratch). A worker thread keeps one and lends it to every machine it
+//    runs; Prepare(n, scratch) makes the scratch ready for this machine's shape too. What a
+//    block leaves behind (the forces read by PathSignal / ForceAmplitude / DominantPathSignal,
+//    the learned state) stays in the processor. Process(block, out) and Prepare(n) use a
+//    scratch of the processor's own, made when first needed.
+//
+// Thread-safety: one BlockProcessor per machine; Process() mutates internal buffers and must
+// not be called concurrently on the same instance. One BlockScratch is used by one thread at a
+// time: two processors may run concurrently only on different scratch objects. Different
+// instances share nothing but FFTW's planner, which core/dsp's FftPlan guards with one mutex
+// (configuration of different machines' processors may run concurrently).
 #pragma once
 
 #include <array>
@@ -56,6 +66,7 @@ namespace gearpath {
 inline constexpr std::size_t kMaxShapes = 4;
 
 class SharedFrfOperators;  // core/pipeline/shared_frf_operators.h
+class BlockScratch;        // core/pipeline/block_scratch.h
 
 struct AnalysisOptions {
   // --- Bearing-force identification (core/inverse): method (MWI default, Tikhonov, least
@@ -320,8 +331,14 @@ class BlockProcessor {
   BlockProcessor& operator=(BlockProcessor&&) noexcept;
   ~BlockProcessor();
 
-  // Configures for blocks of `samples_per_channel` samples ahead of the first such block.
+  // Configures for blocks of `samples_per_channel` samples ahead of the first such block, and
+  // the processor's own scratch (used by the two-argument Process()).
   Status Prepare(std::uint32_t samples_per_channel);
+  // The same, readying `scratch` (instead of the own one) for this machine's blocks of that
+  // length: a later Process(block, out, scratch) of such a block allocates nothing. Scratch
+  // already ready for a machine of the same shape is reused as it is. `scratch` must not be in
+  // use by another thread meanwhile.
+  Status Prepare(std::uint32_t samples_per_channel, BlockScratch& scratch);
   // True when blocks of this length are configured (Prepare() or an earlier block).
   bool configured_for(std::uint32_t samples_per_channel) const noexcept;
 
@@ -329,19 +346,27 @@ class BlockProcessor {
   // BlockResult every time (its vectors are sized once and reused, so nothing is allocated
   // once the shape is configured). On rejection `out` is left untouched; the
   // outcome carries the reason and message. The block must stay alive only during the call.
+  // Works in the processor's own scratch.
   ProcessOutcome Process(const AccelBlockView& block, BlockResult& out) noexcept;
+  // The same, working in `scratch` (lent for the call; nothing in it is read from an earlier
+  // call, so it may serve any number of processors, one call at a time). The first block of a
+  // shape that `scratch` has not served allocates there.
+  ProcessOutcome Process(const AccelBlockView& block, BlockResult& out,
+                         BlockScratch& scratch) noexcept;
 
   // Time signal (length samples_per_channel of the last accepted block) of the dominant
   // path's contribution at FRF row `channel`, from the last accepted block. Empty before the
   // first accepted block or for an invalid channel. Valid until the next Process() or a call
   // for another channel (one channel's signal is kept, made on the first call for it after a
   // block: no stage needs them, Process() does not); like Process(), not to be called
-  // concurrently on one instance. Allocation-free.
+  // concurrently on one instance. Made in the processor's own scratch: allocation-free once
+  // that has served the shape (Prepare(n) or the two-argument Process()); a processor that ran
+  // only on lent scratch makes it on the first call.
   std::span<const double> DominantPathSignal(std::size_t channel) const noexcept;
 
   // Time signal of any path's contribution at FRF row `channel` for the last accepted block,
-  // written into `out` (size samples_per_channel). Allocation-free; false on bad indices or
-  // size.
+  // written into `out` (size samples_per_channel). Allocation-free as DominantPathSignal (its
+  // inverse FFT is the own scratch's); false on bad indices or size.
   bool PathSignal(std::size_t path, std::size_t channel, std::span<double> out) noexcept;
 
   // Amplitude |F| of path `path`'s identified bearing force at every block bin of the last

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/common/simd_clones.h"
+#include "core/pipeline/shape_scratch.h"
 #include "core/pipeline/shared_frf_operators.h"
 
 namespace gearpath {
@@ -26,15 +27,10 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   } else {
     w.frf_table = std::make_shared<const FrfPowerTable>(FrfPowerTable::Build(w.map));
   }
-  auto inverse = InverseSpectrum::Create(n, 1);
-  if (!inverse) return Error{inverse.error()};
-  w.inverse.emplace(std::move(inverse.value()));
 
   const std::size_t channels = machine.channels;
   const std::size_t paths = machine.paths;
   const auto in_range = static_cast<Eigen::Index>(w.map.frf.bins());
-  w.time.assign(channels * n, 0.0);
-  w.spec.assign(channels * w.bins, Cd{});
   w.meshes = machine.unit_meshes;
   if (w.frf_table->paths != paths || w.frf_table->channels != channels ||
       w.frf_table->bins != static_cast<std::size_t>(in_range)) {
@@ -54,7 +50,6 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   w.path_share.assign(paths, 0.0);
   w.path_criterion.assign(paths, 0.0);
   w.best_channel.assign(paths, 0);
-  w.dominant_time.assign(n, 0.0);
   w.indicators.assign(machine.indicator_count, 0.0);
   w.z.assign(machine.indicator_count, 0.0);
   w.excess.assign(machine.indicator_count, 0.0);
@@ -69,9 +64,6 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   w.signature_stride = static_cast<std::size_t>(kSignatureHarmonics) * w.signature_sensors *
                        static_cast<std::size_t>(2 * kSignatureSidebands + 1);
   w.signature_lines.assign(machine.signature_slots.size() * w.signature_stride, Cd{});
-  w.one_spec.assign(w.bins, Cd{});
-  w.raw_signal.assign(n, 0.0);
-  w.rec_signal.assign(n, 0.0);
   return w;
 }
 
@@ -103,17 +95,18 @@ void BlockWorkspace::Contribution(std::size_t path, std::size_t channel,
                   reinterpret_cast<double*>(out.data() + map.first_bin), in_range);
 }
 
-std::span<const double> BlockWorkspace::DominantTime(std::size_t row) noexcept {
+std::span<const double> BlockWorkspace::DominantTime(std::size_t row,
+                                                     ShapeScratch& scratch) noexcept {
   if (dominant_time_row != row) {
     if (dominant >= 0) {
-      Contribution(static_cast<std::size_t>(dominant), row, one_spec);
-      (void)inverse->Process(one_spec, dominant_time);
+      Contribution(static_cast<std::size_t>(dominant), row, scratch.one_spec);
+      (void)scratch.inverse->Process(scratch.one_spec, scratch.dominant_time);
     } else {
-      std::fill(dominant_time.begin(), dominant_time.end(), 0.0);
+      std::fill(scratch.dominant_time.begin(), scratch.dominant_time.end(), 0.0);
     }
     dominant_time_row = row;
   }
-  return dominant_time;
+  return scratch.dominant_time;
 }
 
 }  // namespace gearpath

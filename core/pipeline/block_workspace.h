@@ -1,6 +1,9 @@
-// BlockWorkspace: the buffers one block's stages share, for one block shape (samples per
+// BlockWorkspace: the buffers one machine's stages share, for one block shape (samples per
 // channel). Sized once by BlockWorkspace::Create and the stages' Configure(); every buffer is
-// reused block after block, so processing allocates nothing.
+// reused block after block, so processing allocates nothing. Only what a block leaves for later
+// (the forces, which PathSignal / ForceAmplitude / DominantPathSignal read after Process) or
+// what is small lives here, per machine; the block's time signals, spectra and every other
+// per-call buffer are scratch lent by the caller (ShapeScratch, shape_scratch.h).
 //
 // Layouts: time signals are FRF-row major (row r occupies [r n, (r + 1) n)); spectra are
 // FRF-row major over bins (n/2 + 1 per row); forces are paths x in-range bins, row-major (each
@@ -26,6 +29,8 @@
 
 namespace gearpath {
 
+struct ShapeScratch;  // shape_scratch.h
+
 struct BlockWorkspace {
   using Cd = std::complex<double>;
 
@@ -38,12 +43,7 @@ struct BlockWorkspace {
   // FRF set (SharedFrfOperators::Power).
   std::shared_ptr<const FrfPowerTable> frf_table;
 
-  // --- Shared plans ---
-  std::optional<InverseSpectrum> inverse;  // one channel, any stage may use it
-
-  // --- Filled stage by stage ---
-  std::vector<double> time;  // channels x n: measured samples in FRF row order
-  std::vector<Cd> spec;      // channels x bins: their amplitude spectra
+  // --- Filled stage by stage (the time signals and spectra: ShapeScratch::time, ::spec) ---
   double speed_hz = 0.0;     // input-shaft speed of this block; 0 = unknown
   SpeedSource speed_source = SpeedSource::kUnknown;
   std::vector<MeshLines> meshes;  // every mesh at this block's speed
@@ -68,12 +68,11 @@ struct BlockWorkspace {
 
   int dominant = -1;                 // dominant path; -1 = none
   std::size_t indicator_channel = 0;  // FRF row of the raw / reconstructed indicator
-  // n: the dominant path's contribution in time at one FRF row, made only when asked for
+  // The dominant path's contribution in time at one FRF row is made only when asked for
   // (BlockProcessor::DominantPathSignal; no stage reads it): DominantTime(). One row, not every
-  // row: the daemon never asks, and the 12 rows of the reference workload held 1.5 MB per
-  // machine (issue 9's memory bar).
-  std::vector<double> dominant_time;
-  std::size_t dominant_time_row = kNoRow;  // the row in dominant_time; reset by each block
+  // row, in the processor's own scratch: the daemon never asks, and the 12 rows of the
+  // reference workload held 1.5 MB per machine (issue 9's memory bar).
+  std::size_t dominant_time_row = kNoRow;  // the row made; reset by each block
   static constexpr std::size_t kNoRow = static_cast<std::size_t>(-1);
 
   // Condition indicators (machine.condition_slots layout, then the envelope indicators).
@@ -103,22 +102,19 @@ struct BlockWorkspace {
     int mesh_count = 0;             // meshes the group's gears sit on
   } localisation;
 
-  std::vector<Cd> one_spec;         // bins: scratch spectrum of one signal
-  std::vector<double> raw_signal;   // n: measured signal at the indicator channel
-  std::vector<double> rec_signal;   // n: dominant path's contribution there
-
-  // Sizes every buffer for `machine` and n samples per channel, maps the FRF set onto the
-  // grid and plans the shared inverse FFT.
+  // Sizes every buffer for `machine` and n samples per channel and maps the FRF set onto the
+  // grid.
   static Result<BlockWorkspace> Create(const MachineContext& machine, std::size_t n);
 
   // Contribution spectrum of `path` at FRF row `channel`: H_cp F_p on in-range bins, 0
   // elsewhere (seed Eq. 45). noexcept, allocation-free.
   void Contribution(std::size_t path, std::size_t channel, std::span<Cd> out) const noexcept;
 
-  // dominant_time at FRF row `row` (< channels), made on the first call for that row after a
-  // block (a contribution and an inverse FFT, which no stage needs); valid until the next block
-  // or a call for another row. noexcept, allocation-free.
-  std::span<const double> DominantTime(std::size_t row) noexcept;
+  // The dominant path's contribution in time at FRF row `row` (< channels), in
+  // scratch.dominant_time (`scratch` of this shape, the same one every call), made on the first
+  // call for that row after a block (a contribution and an inverse FFT, which no stage needs);
+  // valid until the next block or a call for another row. noexcept, allocation-free.
+  std::span<const double> DominantTime(std::size_t row, ShapeScratch& scratch) noexcept;
 };
 
 }  // namespace gearpath

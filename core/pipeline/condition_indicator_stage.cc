@@ -1,7 +1,6 @@
 #include "core/pipeline/condition_indicator_stage.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <complex>
 #include <utility>
@@ -10,6 +9,7 @@
 #include "core/pipeline/block_workspace.h"
 #include "core/pipeline/machine_context.h"
 #include "core/pipeline/machine_state.h"
+#include "core/pipeline/shape_scratch.h"
 
 namespace gearpath {
 namespace {
@@ -28,38 +28,14 @@ constexpr double kLockedEvidenceFloor = 1e-30;
 }  // namespace
 
 Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWorkspace& work) {
-  const double fs = machine.setup.options.sample_rate_hz;
-  // A whole revolution must fit in the block, so M (>= fs / f) never needs to exceed it.
-  const std::size_t max_points =
-      std::clamp<std::size_t>(std::bit_ceil(work.n), 4, std::size_t{1} << 16);
-  // Every average runs on plans_ (one grid per rate group): the stage needs no grid of its own.
-  auto tsa = SynchronousAverage::Create(work.n, fs, max_points,
-                                        SynchronousAverage::OneStepPlan::kNone);
-  if (!tsa) return Error{"synchronous average: " + tsa.error()};
-  tsa_.emplace(std::move(tsa.value()));
-  auto ind = GearConditionIndicators::Create(max_points);
-  if (!ind) return Error{"condition indicators: " + ind.error()};
-  indicators_.emplace(std::move(ind.value()));
-  record_ = tsa_->MakeRecord();
-  plans_.clear();
-  for (std::size_t g = 0; g < machine.rate_groups.size(); ++g) plans_.push_back(tsa_->MakePlan());
+  // The averager, its grids, the tracker and the buffers are the scratch's (ShapeScratch::
+  // condition); the machine keeps its order masks and slot layout.
+  const std::size_t max_points = SynchronousPointsCap(work.n);
   const AnalysisOptions& o = machine.setup.options;
   localisation_only_ = o.localisation_tracking && !o.order_tracking;
   plan_ok_.assign(machine.rate_groups.size(), 0);
-  signal_.assign(work.n, 0.0);
-  locked_power_.assign(max_points / 2 + 1, 0.0);
-  spread_power_.assign(max_points / 2 + 1, 0.0);
-  tracker_.reset();
-  warp_.clear();
-  if (o.order_tracking || localisation_only_) {
-    // A block too short to track (under 64 samples) is averaged at constant speed.
-    if (auto tracker = OrderTracker::Create(work.n, fs); tracker) {
-      tracker_.emplace(std::move(tracker).value());
-      warp_.assign(work.n, 0.0);
-    }
-  }
 
-  const int low_orders = indicators_->options().low_shaft_orders;
+  const int low_orders = IndicatorOptions{}.low_shaft_orders;  // ShapeScratch's indicators'
   exclusive_.assign(machine.rate_groups.size(), {});
   for (std::size_t g = 0; g < machine.rate_groups.size(); ++g) {
     const RateGroup& rg = machine.rate_groups[g];
@@ -91,9 +67,10 @@ void ConditionIndicatorStage::KeepSignatureLines(StageContext& ctx, std::size_t 
   BlockWorkspace& w = ctx.work;
   const ConditionSignal& cs = ctx.machine.condition_signals[signal];
   if (cs.source == ConditionSource::kContribution) return;
+  const ShapeScratch::Condition& cw = ctx.scratch.condition;
   const bool forces = cs.source == ConditionSource::kForce;
   const RateGroup& rg = ctx.machine.rate_groups[group];
-  const auto orders = record_.orders();
+  const auto orders = cw.record.orders();
   const auto width = static_cast<std::size_t>(2 * kSignatureSidebands + 1);
   const auto sensor = static_cast<std::size_t>(cs.index);
   for (std::size_t i = 0; i < rg.meshes.size(); ++i) {
@@ -142,8 +119,10 @@ void ConditionIndicatorStage::Signatures(StageContext& ctx, bool tracked) noexce
 
 bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
   BlockWorkspace& w = ctx.work;
+  const ShapeScratch& s = ctx.scratch;
+  ShapeScratch::Condition& cw = ctx.scratch.condition;
   int& mode = ctx.state.order_tracking_mode;
-  if (!tracker_ || w.meshes.empty() || mode == 0) return false;
+  if (!cw.tracker || w.meshes.empty() || mode == 0) return false;
   // The band stays inside +/- 3/4 of the slowest shaft rate, so a fault's shaft-rate sidebands
   // (its modulation) are not tracked as speed.
   double slowest = w.meshes.front().shaft_hz[0];
@@ -166,7 +145,7 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
         std::min(w.bins - 1, static_cast<std::size_t>(std::floor((fc + half_band) / w.bin_hz)));
     for (std::size_t c = 0; c < ctx.machine.channels; ++c) {
       double power = 0.0;
-      for (std::size_t k = lo; k <= hi; ++k) power += std::norm(w.spec[c * w.bins + k]);
+      for (std::size_t k = lo; k <= hi; ++k) power += std::norm(s.spec[c * w.bins + k]);
       if (power > best_power) {
         best_power = power;
         carrier = fc;
@@ -176,31 +155,32 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
     }
   }
   const std::span<const double> reference =
-      std::span<const double>(w.time).subspan(channel * w.n, w.n);
+      std::span<const double>(s.time).subspan(channel * w.n, w.n);
   // A block whose tone cannot be tracked (none in range, too weak) is averaged at its mean speed.
   const bool tracked =
-      best_power > 0.0 && tracker_->Track(reference, carrier, half_band, warp_).ok();
+      best_power > 0.0 && cw.tracker->Track(reference, carrier, half_band, cw.warp).ok();
   if (mode == -1) {
     // The machine's one decision: track only when it makes the carrier's shaft average more
     // coherent. Another line inside the band (a shaft harmonic, a second mesh) beats with the
     // carrier and would be tracked as a speed change that is not there.
-    mode = tracked && MeshCoherence(reference, carrier_shaft, carrier, warp_) >
-                          kTrackingGain * MeshCoherence(reference, carrier_shaft, carrier, {})
+    mode = tracked && MeshCoherence(cw, reference, carrier_shaft, carrier, cw.warp) >
+                          kTrackingGain * MeshCoherence(cw, reference, carrier_shaft, carrier, {})
                ? 1
                : 0;
   }
   return mode == 1 && tracked;
 }
 
-double ConditionIndicatorStage::MeshCoherence(std::span<const double> signal, double shaft_hz,
+double ConditionIndicatorStage::MeshCoherence(ShapeScratch::Condition& cw,
+                                              std::span<const double> signal, double shaft_hz,
                                               double mesh_hz,
                                               std::span<const double> warp) noexcept {
-  // plans_[0] as scratch: TrackOrders() runs before Process() plans the block's groups.
-  if (plans_.empty() || !tsa_->Plan(shaft_hz, plans_[0], warp).ok() ||
-      !tsa_->Process(signal, plans_[0], record_).ok()) {
+  // cw.plans[0] as scratch: TrackOrders() runs before Process() plans the block's groups.
+  if (cw.plans.empty() || !cw.tsa->Plan(shaft_hz, cw.plans[0], warp).ok() ||
+      !cw.tsa->Process(signal, cw.plans[0], cw.record).ok()) {
     return 0.0;
   }
-  const auto orders = record_.orders();
+  const auto orders = cw.record.orders();
   const double teeth = std::round(mesh_hz / shaft_hz);
   double power = 0.0;
   for (int h = 1; h <= kCoherenceHarmonics; ++h) {
@@ -211,9 +191,10 @@ double ConditionIndicatorStage::MeshCoherence(std::span<const double> signal, do
   return power;
 }
 
-double ConditionIndicatorStage::ExclusiveEnergy(std::size_t g) const noexcept {
+double ConditionIndicatorStage::ExclusiveEnergy(const SynchronousAverageRecord& record,
+                                                std::size_t g) const noexcept {
   // Units^2: comparable between rate groups of one signal.
-  const auto orders = record_.orders();
+  const auto orders = record.orders();
   const std::vector<std::uint8_t>& mask = exclusive_[g];
   double exclusive = 0.0;
   for (std::size_t k = 1; k < orders.size() && k < mask.size(); ++k) {
@@ -240,50 +221,54 @@ double ConditionIndicatorStage::LockedExclusiveEnergy(
 
 void ConditionIndicatorStage::TrackedLocalisation(StageContext& ctx) noexcept {
   BlockWorkspace& w = ctx.work;
+  const ShapeScratch& s = ctx.scratch;
+  ShapeScratch::Condition& cw = ctx.scratch.condition;
   const MachineContext& m = ctx.machine;
   const std::size_t groups = m.rate_groups.size();
   for (std::size_t g = 0; g < groups; ++g) {
-    // The constant-speed grids of plans_ are used up by now: the tracked ones replace them
+    // The constant-speed grids of cw.plans are used up by now: the tracked ones replace them
     // (Process() plans every group again next block).
-    if (!tsa_->Plan(m.rate_groups[g].ratio * w.speed_hz, plans_[g], warp_).ok()) continue;
+    if (!cw.tsa->Plan(m.rate_groups[g].ratio * w.speed_hz, cw.plans[g], cw.warp).ok()) continue;
     for (std::size_t c = 0; c < m.channels; ++c) {
       const std::size_t slot = c * groups + g;  // measured signals come first
       if (!w.slot_valid[slot]) continue;
-      const std::span<const double> signal = std::span<const double>(w.time).subspan(c * w.n, w.n);
-      if (!tsa_->Process(signal, plans_[g], record_).ok()) continue;
-      w.indicators[m.tracked_offset + slot] = ExclusiveEnergy(g);
+      const std::span<const double> signal = std::span<const double>(s.time).subspan(c * w.n, w.n);
+      if (!cw.tsa->Process(signal, cw.plans[g], cw.record).ok()) continue;
+      w.indicators[m.tracked_offset + slot] = ExclusiveEnergy(cw.record, g);
       KeepSignatureLines(ctx, c, g);  // overwrites the measured lines (already used)
     }
   }
   Signatures(ctx, /*tracked=*/true);
 }
 
-// The time signal of condition signal `signal` (a view of the block or of signal_).
+// The time signal of condition signal `signal` (a view of the block or of s.signal).
 std::span<const double> ConditionIndicatorStage::SignalOf(const StageContext& ctx,
                                                           std::size_t signal) noexcept {
   BlockWorkspace& w = ctx.work;
+  ShapeScratch& s = ctx.scratch;
   const ConditionSignal& cs = ctx.machine.condition_signals[signal];
   const auto index = static_cast<std::size_t>(cs.index);
   switch (cs.source) {
     case ConditionSource::kMeasured:
-      return std::span<const double>(w.time).subspan(index * w.n, w.n);
+      return std::span<const double>(s.time).subspan(index * w.n, w.n);
     case ConditionSource::kContribution:
-      w.Contribution(index, static_cast<std::size_t>(w.best_channel[index]), w.one_spec);
+      w.Contribution(index, static_cast<std::size_t>(w.best_channel[index]), s.one_spec);
       break;
     case ConditionSource::kForce:
-      std::fill(w.one_spec.begin(), w.one_spec.end(), BlockWorkspace::Cd{});
+      std::fill(s.one_spec.begin(), s.one_spec.end(), BlockWorkspace::Cd{});
       for (Eigen::Index i = 0; i < w.map.frf.bins(); ++i) {
-        w.one_spec[w.map.first_bin + static_cast<std::size_t>(i)] =
+        s.one_spec[w.map.first_bin + static_cast<std::size_t>(i)] =
             w.forces(static_cast<Eigen::Index>(index), i);
       }
       break;
   }
-  (void)w.inverse->Process(w.one_spec, signal_);
-  return signal_;
+  (void)s.inverse->Process(s.one_spec, s.signal);
+  return s.signal;
 }
 
 RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
   BlockWorkspace& w = ctx.work;
+  ShapeScratch::Condition& cw = ctx.scratch.condition;
   const MachineContext& m = ctx.machine;
   const MachineState& st = ctx.state;
   std::fill(w.indicators.begin(), w.indicators.end(), 0.0);
@@ -294,10 +279,10 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
   const std::size_t groups = m.rate_groups.size();
   const bool tracked = TrackOrders(ctx);
   const std::span<const double> warp = tracked && m.setup.options.order_tracking
-                                           ? std::span<const double>(warp_)
+                                           ? std::span<const double>(cw.warp)
                                            : std::span<const double>();
   for (std::size_t g = 0; g < groups; ++g) {
-    plan_ok_[g] = tsa_->Plan(m.rate_groups[g].ratio * w.speed_hz, plans_[g], warp).ok() ? 1 : 0;
+    plan_ok_[g] = cw.tsa->Plan(m.rate_groups[g].ratio * w.speed_hz, cw.plans[g], warp).ok() ? 1 : 0;
   }
   for (std::size_t sig = 0; sig < m.condition_signals.size(); ++sig) {
     const std::span<const double> signal = SignalOf(ctx, sig);
@@ -307,31 +292,31 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
       const RateGroup& rg = m.rate_groups[g];
       const double shaft_hz = rg.ratio * w.speed_hz;
       w.slot_shaft_hz[slot] = shaft_hz;
-      if (!plan_ok_[g] || !tsa_->Process(signal, plans_[g], record_).ok()) continue;
+      if (!plan_ok_[g] || !cw.tsa->Process(signal, cw.plans[g], cw.record).ok()) continue;
       const double na4_reference =
           st.residual_variance_healthy.blocks > 0 ? st.residual_variance_healthy.mean[slot] : 0.0;
       // The synchronous low-order ratio costs R more FFTs: measured channels only (the
       // contributions are built from them; the forces are not scored).
       RevolutionSpreadView spread;
       if (cs.signal < m.channels) {
-        const std::size_t orders = record_.orders().size();
-        const std::span<double> locked(locked_power_.data(), orders);
-        const std::span<double> between(spread_power_.data(), orders);
-        if (tsa_->RevolutionSpread(signal, plans_[g], locked, between).ok()) {
-          spread = {locked, between, record_.revolutions, record_.nyquist_order};
+        const std::size_t orders = cw.record.orders().size();
+        const std::span<double> locked(cw.locked_power.data(), orders);
+        const std::span<double> between(cw.spread_power.data(), orders);
+        if (cw.tsa->RevolutionSpread(signal, cw.plans[g], locked, between).ok()) {
+          spread = {locked, between, cw.record.revolutions, cw.record.nyquist_order};
         }
       }
-      if (!indicators_
-               ->Compute(record_.tsa(), record_.orders(), rg.mesh_orders, na4_reference, values_,
-                         spread)
+      if (!cw.indicators
+               ->Compute(cw.record.tsa(), cw.record.orders(), rg.mesh_orders, na4_reference,
+                         cw.values, spread)
                .ok()) {
         continue;
       }
       double* out = w.indicators.data() + cs.offset;
-      std::copy(values_.value.begin(), values_.value.end(), out);
+      std::copy(cw.values.value.begin(), cw.values.value.end(), out);
       std::size_t e = kConditionIndicatorCount;
-      for (std::size_t i = 0; i < rg.meshes.size(); ++i) out[e++] = values_.sideband_energy[i];
-      out[e] = ExclusiveEnergy(g);
+      for (std::size_t i = 0; i < rg.meshes.size(); ++i) out[e++] = cw.values.sideband_energy[i];
+      out[e] = ExclusiveEnergy(cw.record, g);
       // The localisation's entry: this value unless TrackedLocalisation() replaces it.
       // From the revolutions' spread when there is one: an average of R revolutions still
       // passes up to 1/R of another shaft's line, which at 2-3 revolutions named the wrong shaft
@@ -341,8 +326,8 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
             spread.revolutions >= 2 ? LockedExclusiveEnergy(g, spread) : out[e];
       }
       w.slot_valid[slot] = 1;
-      w.slot_revolutions[slot] = static_cast<int>(record_.revolutions);
-      w.slot_residual_variance[slot] = values_.residual_variance;
+      w.slot_revolutions[slot] = static_cast<int>(cw.record.revolutions);
+      w.slot_residual_variance[slot] = cw.values.residual_variance;
       KeepSignatureLines(ctx, sig, g);
     }
   }

@@ -11,13 +11,12 @@
 // line); leaving them out keeps one shaft's fault from scoring on another.
 #pragma once
 
-#include <optional>
 #include <vector>
 
 #include "core/diagnosis/gear_condition_indicators.h"
-#include "core/dsp/order_tracker.h"
 #include "core/dsp/synchronous_average.h"
 #include "core/pipeline/pipeline_stage.h"
+#include "core/pipeline/shape_scratch.h"
 
 namespace gearpath {
 
@@ -33,44 +32,32 @@ class ConditionIndicatorStage final : public PipelineStage {
   // Parallel and orthogonal energies of every signature slot from the kept lines; with
   // `tracked`, only the measured slots', into their tracked entries.
   void Signatures(StageContext& ctx, bool tracked) noexcept;
-  // Tracks this block's speed variation from its strongest mesh tone into warp_; false (and
-  // constant speed) when tracking is off, the block too short or the tone too weak. The
-  // machine's first block with a speed decides, once, whether it is tracked at all
+  // Tracks this block's speed variation from its strongest mesh tone into the scratch's warp;
+  // false (and constant speed) when tracking is off, the block too short or the tone too weak.
+  // The machine's first block with a speed decides, once, whether it is tracked at all
   // (MachineState::order_tracking_mode): a baseline must be averaged like the blocks it judges.
   bool TrackOrders(StageContext& ctx) noexcept;
-  // Power of the first mesh harmonics in `signal`'s average at `shaft_hz` (uses record_).
-  double MeshCoherence(std::span<const double> signal, double shaft_hz, double mesh_hz,
-                       std::span<const double> warp) noexcept;
-  // Exclusive residual energy of the last average (record_) at rate group g.
-  double ExclusiveEnergy(std::size_t g) const noexcept;
+  // Power of the first mesh harmonics in `signal`'s average at `shaft_hz` (averaged into
+  // cw.record on cw.plans[0]).
+  double MeshCoherence(ShapeScratch::Condition& cw, std::span<const double> signal,
+                       double shaft_hz, double mesh_hz, std::span<const double> warp) noexcept;
+  // Exclusive residual energy of an average (`record`) at rate group g.
+  double ExclusiveEnergy(const SynchronousAverageRecord& record, std::size_t g) const noexcept;
   // The same from the revolutions' spread: only the part locked to the shaft (the shaft
   // evidence at constant speed).
   double LockedExclusiveEnergy(std::size_t g, const RevolutionSpreadView& spread) const noexcept;
   // AnalysisOptions::localisation_tracking: the measured slots' exclusive residuals and
-  // transfer signatures again, from averages at the tracked angle (warp_), into the indicator
+  // transfer signatures again, from averages at the tracked angle (the warp), into the indicator
   // vector's tracked entries (MachineContext::tracked_offset).
   void TrackedLocalisation(StageContext& ctx) noexcept;
 
-  std::optional<SynchronousAverage> tsa_;
-  std::optional<OrderTracker> tracker_;
-  std::vector<double> warp_;  // n: uniform angle -> sample position (order_tracker.h)
-  std::optional<GearConditionIndicators> indicators_;
-  SynchronousAverageRecord record_;
-  // Per rate group: its shaft's angular grid in this block, shared by every signal; plan_ok_
-  // is 0 where Plan() failed (e.g. less than one revolution in the block). The stage's only
-  // grids (0.65 MB each at 8192 samples): the mesh coherence test borrows plans_[0] before the
-  // block's groups are planned, the tracked localisation reuses them after.
-  std::vector<SynchronousAveragePlan> plans_;
+  // The averager, the per-group grids, the tracker and its warp, the record and the buffers
+  // live only within one block: they are the scratch's (ShapeScratch::Condition). Per rate
+  // group: 0 where this block's Plan() failed (e.g. less than one revolution in the block).
   std::vector<std::uint8_t> plan_ok_;
   // AnalysisOptions::localisation_tracking without order_tracking: the tracked localisation
-  // re-averages the measured channels on plans_ after the scored averages.
+  // re-averages the measured channels on the grids after the scored averages.
   bool localisation_only_ = false;
-  ConditionIndicatorValues values_;
-  std::vector<double> signal_;  // n: one signal in time
-  // Measured channels: each order's locked power and spread between revolutions
-  // (kSynchronousLowOrders of gear_condition_indicators.h), orders 0..M/2.
-  std::vector<double> locked_power_;
-  std::vector<double> spread_power_;
   std::vector<std::vector<std::uint8_t>> exclusive_;  // per group: order line is exclusive
   // signature_slot_[(group * 2 + forces) * kMaxMeshesPerShaft + mesh]: signature slot index.
   std::vector<std::size_t> signature_slot_;

@@ -7,15 +7,14 @@
 #include "core/pipeline/block_workspace.h"
 #include "core/pipeline/machine_context.h"
 #include "core/pipeline/machine_state.h"
+#include "core/pipeline/shape_scratch.h"
 
 namespace gearpath {
 
-Status DominantPathStage::Configure(const MachineContext& machine, BlockWorkspace& work) {
-  if (machine.setup.options.criterion == AnalysisOptions::DominantCriterion::kIndicator) {
-    auto e = EnvelopeAnalysis::Create(machine, work.n);
-    if (!e) return Error{e.error()};
-    envelope_.emplace(std::move(e.value()));
-    signal_.assign(work.n, 0.0);
+Status DominantPathStage::Configure(const MachineContext& machine, BlockWorkspace&) {
+  indicator_criterion_ =
+      machine.setup.options.criterion == AnalysisOptions::DominantCriterion::kIndicator;
+  if (indicator_criterion_) {
     indicator_.assign(machine.shaft_ratio.size(), 0.0);
     harmonics_.assign(machine.shaft_ratio.size(), {});
   }
@@ -25,11 +24,12 @@ Status DominantPathStage::Configure(const MachineContext& machine, BlockWorkspac
 // Each path's own fault indicator (max over shafts) at its best channel.
 void DominantPathStage::IndicatorCriterion(StageContext& ctx) noexcept {
   BlockWorkspace& w = ctx.work;
-  BlockEnvelopeBand scratch;
+  ShapeScratch& s = ctx.scratch;
+  BlockEnvelopeBand band;
   for (std::size_t p = 0; p < ctx.machine.paths; ++p) {
-    w.Contribution(p, static_cast<std::size_t>(w.best_channel[p]), w.one_spec);
-    (void)w.inverse->Process(w.one_spec, signal_);
-    envelope_->Process(signal_, w.speed_hz, scratch, indicator_, harmonics_);
+    w.Contribution(p, static_cast<std::size_t>(w.best_channel[p]), s.one_spec);
+    (void)s.inverse->Process(s.one_spec, s.signal);
+    s.envelope->Process(ctx.machine, s.signal, w.speed_hz, band, indicator_, harmonics_);
     w.path_criterion[p] = *std::max_element(indicator_.begin(), indicator_.end());
   }
 }
@@ -40,7 +40,7 @@ RejectReason DominantPathStage::Process(StageContext& ctx) noexcept {
   const MachineContext& m = ctx.machine;
   const AnalysisOptions& o = m.setup.options;
   const bool have_speed = w.speed_hz > 0.0;
-  if (envelope_ && have_speed) IndicatorCriterion(ctx);
+  if (indicator_criterion_ && have_speed) IndicatorCriterion(ctx);
 
   // Excess over the healthy level (see AnalysisOptions::criterion_over_baseline).
   if (o.criterion_over_baseline && st.learning && have_speed) {

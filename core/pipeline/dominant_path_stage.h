@@ -23,8 +23,8 @@ class DominantPathStage final : public PipelineStage {
  private:
   void IndicatorCriterion(StageContext& ctx) noexcept;
 
-  std::optional<EnvelopeAnalysis> envelope_;  // only for the `indicator` criterion
-  std::vector<double> signal_;
+  // The `indicator` criterion (its analysis and signal are the scratch's): per shaft.
+  bool indicator_criterion_ = false;
   std::vector<double> indicator_;
   std::vector<std::array<double, kIndicatorHarmonics>> harmonics_;
 };

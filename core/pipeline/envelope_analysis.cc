@@ -9,12 +9,9 @@
 
 namespace gearpath {
 
-Result<EnvelopeAnalysis> EnvelopeAnalysis::Create(const MachineContext& machine, std::size_t n) {
+Result<EnvelopeSettings> EnvelopeSettings::Of(const MachineContext& machine, std::size_t n) {
   const AnalysisOptions& o = machine.setup.options;
   const double fs = o.sample_rate_hz;
-  EnvelopeAnalysis e;
-  e.machine_ = &machine;
-  e.bin_hz_ = fs / static_cast<double>(n);
   KurtogramOptions ko;
   ko.depth = o.kurtogram_max_level;
   ko.min_bandwidth_hz = o.min_band_width_hz > 0.0
@@ -26,6 +23,20 @@ Result<EnvelopeAnalysis> EnvelopeAnalysis::Create(const MachineContext& machine,
                     "shaft rate) does not fit below Nyquist {} Hz",
                     ko.min_bandwidth_hz, kIndicatorHarmonics, fs / 2.0)};
   }
+  EnvelopeSettings s;
+  s.n = n;
+  s.sample_rate_hz = fs;
+  s.kurtogram = ko;
+  return s;
+}
+
+Result<EnvelopeAnalysis> EnvelopeAnalysis::Create(const EnvelopeSettings& settings) {
+  const std::size_t n = settings.n;
+  const double fs = settings.sample_rate_hz;
+  const KurtogramOptions& ko = settings.kurtogram;
+  EnvelopeAnalysis e;
+  e.settings_ = settings;
+  e.bin_hz_ = fs / static_cast<double>(n);
   auto kurtogram = Kurtogram::Create(n, fs, ko);
   if (!kurtogram) return Error{"kurtogram: " + kurtogram.error()};
   e.kurtogram_.emplace(std::move(kurtogram.value()));
@@ -41,10 +52,9 @@ Result<EnvelopeAnalysis> EnvelopeAnalysis::Create(const MachineContext& machine,
 }
 
 void EnvelopeAnalysis::Process(
-    std::span<const double> signal, double speed_hz, BlockEnvelopeBand& band,
-    std::span<double> indicator,
+    const MachineContext& m, std::span<const double> signal, double speed_hz,
+    BlockEnvelopeBand& band, std::span<double> indicator,
     std::span<std::array<double, kIndicatorHarmonics>> harmonics) noexcept {
-  const MachineContext& m = *machine_;
   band = BlockEnvelopeBand{};
   const double nyquist = m.setup.options.sample_rate_hz / 2.0;
   double lo = m.band_lo;

@@ -5,7 +5,6 @@
 #pragma once
 
 #include <array>
-#include <optional>
 #include <vector>
 
 #include "core/pipeline/envelope_analysis.h"
@@ -20,9 +19,7 @@ class EnvelopeStage final : public PipelineStage {
   RejectReason Process(StageContext& ctx) noexcept override;
 
  private:
-  void ToTime(BlockWorkspace& w, bool remove_mesh_tones, std::span<double> dst) noexcept;
-
-  std::optional<EnvelopeAnalysis> envelope_;
+  // The analysis, its plans and the signals are the scratch's (ShapeScratch::envelope, ...).
   std::vector<double> raw_;  // per shaft
   std::vector<double> rec_;
   std::vector<std::array<double, kIndicatorHarmonics>> raw_harmonics_;

@@ -6,6 +6,7 @@
 
 #include "core/common/simd_clones.h"
 #include "core/pipeline/block_workspace.h"
+#include "core/pipeline/shape_scratch.h"
 #include "core/pipeline/machine_context.h"
 #include "core/pipeline/shared_frf_operators.h"
 
@@ -153,7 +154,7 @@ RejectReason IdentificationStage::Process(StageContext& ctx) noexcept {
     const std::size_t count = std::min(kChunk, in_range - b0);
     // Responses, split; the last chunk's missing bins read zero.
     for (std::size_t c = 0; c < channels; ++c) {
-      const BlockWorkspace::Cd* s = w.spec.data() + c * w.bins + first + b0;
+      const BlockWorkspace::Cd* s = ctx.scratch.spec.data() + c * w.bins + first + b0;
       double* re = x_re_.data() + c * kChunk;
       double* im = x_im_.data() + c * kChunk;
       for (std::size_t j = 0; j < count; ++j) {

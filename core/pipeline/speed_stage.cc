@@ -7,6 +7,7 @@
 #include "core/diagnosis/dominant_path.h"
 #include "core/diagnosis/speed_estimate.h"
 #include "core/pipeline/block_workspace.h"
+#include "core/pipeline/shape_scratch.h"
 #include "core/pipeline/machine_context.h"
 
 namespace gearpath {
@@ -33,7 +34,7 @@ RejectReason SpeedStage::Process(StageContext& ctx) noexcept {
     const std::size_t channels = ctx.machine.channels;
     for (std::size_t k = 0; k < w.bins; ++k) {
       double p = 0.0;
-      for (std::size_t c = 0; c < channels; ++c) p += std::norm(w.spec[c * w.bins + k]);
+      for (std::size_t c = 0; c < channels; ++c) p += std::norm(ctx.scratch.spec[c * w.bins + k]);
       amplitude_[k] = std::sqrt(p);
     }
     SpeedSearch search;

@@ -5,15 +5,18 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/diagnosis/train_layout.h"
+#include "core/pipeline/block_scratch.h"
 #include "tests/core/counting_operator_new.h"
 #include "tests/core/pipeline/simulated_machine.h"
 
@@ -174,6 +177,192 @@ TEST(BlockProcessorTest, AllocatesNothingInTheFirstBlockAfterPrepare) {
   EXPECT_TRUE(o.accepted()) << o.message.view();
   EXPECT_EQ(r.verdict.state, FaultState::kLearning);
   EXPECT_EQ(after - before, 0);
+}
+
+// --- Scratch lent by the caller (block_scratch.h): a daemon worker's one scratch serves every
+// machine it runs.
+
+// A simulated stream of `machine` in blocks of n samples.
+GearboxSimulator StreamOf(const Machine& machine, FaultType type, const std::string& gear,
+                          std::uint64_t seed, std::uint32_t n) {
+  SimulatorConfig c;
+  c.machine_id = "sim";
+  c.fault.type = type;
+  c.fault.gear = gear;
+  c.sample_rate_hz = kFs;
+  c.block_length = n;
+  c.noise_relative = 0.05;
+  c.seed = seed;
+  c.include_housing_channel = false;
+  auto sim = GearboxSimulator::Create(machine.model, machine.train, c);
+  EXPECT_TRUE(sim.ok()) << sim.error();
+  return std::move(sim.value());
+}
+
+// Every published figure of two results, exactly (same inputs, same operations: the same bits).
+void ExpectSameResult(const BlockResult& a, const BlockResult& b, const std::string& where) {
+  SCOPED_TRACE(where);
+  EXPECT_EQ(a.sequence, b.sequence);
+  EXPECT_EQ(a.speed_hz, b.speed_hz);
+  EXPECT_EQ(a.dominant_path, b.dominant_path);
+  EXPECT_EQ(a.indicator_channel, b.indicator_channel);
+  ASSERT_EQ(a.paths.size(), b.paths.size());
+  for (std::size_t i = 0; i < a.paths.size(); ++i) {
+    EXPECT_EQ(a.paths[i].energy, b.paths[i].energy) << "path " << i;
+    EXPECT_EQ(a.paths[i].share, b.paths[i].share) << "path " << i;
+    EXPECT_EQ(a.paths[i].criterion, b.paths[i].criterion) << "path " << i;
+  }
+  for (const auto& [x, y] : {std::pair{&a.raw_band, &b.raw_band},
+                             std::pair{&a.reconstructed_band, &b.reconstructed_band}}) {
+    EXPECT_EQ(x->centre_hz, y->centre_hz);
+    EXPECT_EQ(x->width_hz, y->width_hz);
+    EXPECT_EQ(x->level, y->level);
+    EXPECT_EQ(x->kurtosis, y->kurtosis);
+    EXPECT_EQ(x->significant, y->significant);
+  }
+  ASSERT_EQ(a.shafts.size(), b.shafts.size());
+  for (std::size_t i = 0; i < a.shafts.size(); ++i) {
+    EXPECT_EQ(a.shafts[i].raw, b.shafts[i].raw) << "shaft " << i;
+    EXPECT_EQ(a.shafts[i].reconstructed, b.shafts[i].reconstructed) << "shaft " << i;
+    EXPECT_EQ(a.shafts[i].raw_harmonics, b.shafts[i].raw_harmonics) << "shaft " << i;
+    EXPECT_EQ(a.shafts[i].reconstructed_harmonics, b.shafts[i].reconstructed_harmonics);
+    EXPECT_EQ(a.shafts[i].raw_threshold, b.shafts[i].raw_threshold) << "shaft " << i;
+  }
+  ASSERT_EQ(a.condition.size(), b.condition.size());
+  for (std::size_t i = 0; i < a.condition.size(); ++i) {
+    const BlockConditionIndicators& x = a.condition[i];
+    const BlockConditionIndicators& y = b.condition[i];
+    EXPECT_EQ(x.revolutions, y.revolutions) << "set " << i;
+    EXPECT_EQ(x.score, y.score) << "set " << i;
+    ASSERT_EQ(x.value.size(), y.value.size());
+    for (std::size_t k = 0; k < x.value.size(); ++k) {
+      EXPECT_EQ(x.value[k], y.value[k]) << "set " << i << " value " << k;
+      EXPECT_EQ(x.z[k], y.z[k]) << "set " << i << " z " << k;
+    }
+  }
+  EXPECT_EQ(a.score.score, b.score.score);
+  EXPECT_EQ(a.score.limit_z, b.score.limit_z);
+  EXPECT_EQ(a.score.exceed_count, b.score.exceed_count);
+  EXPECT_EQ(a.localisation.group, b.localisation.group);
+  EXPECT_EQ(a.localisation.shaft_evidence, b.localisation.shaft_evidence);
+  EXPECT_EQ(a.localisation.shaft_evidence_accumulated, b.localisation.shaft_evidence_accumulated);
+  EXPECT_EQ(a.localisation.mesh_evidence, b.localisation.mesh_evidence);
+  EXPECT_EQ(a.localisation.signature_excess, b.localisation.signature_excess);
+  EXPECT_EQ(a.verdict.state, b.verdict.state);
+  EXPECT_EQ(a.verdict.gear, b.verdict.gear);
+  EXPECT_EQ(a.verdict.confidence, b.verdict.confidence);
+  EXPECT_EQ(a.verdict.candidates, b.verdict.candidates);
+  EXPECT_EQ(a.regularisation.alpha_median, b.regularisation.alpha_median);
+  EXPECT_EQ(a.regularisation.relative_residual, b.regularisation.relative_residual);
+}
+
+// Independent truth: each processor on its own scratch. Three machines take turns on one lent
+// scratch: two of one shape (one area, whatever the other left in it) and one of another shape
+// and gear train; through learning into faults, every result is the own-scratch run's, bit for
+// bit, and so are the signals made after the last block.
+TEST(BlockScratchTest, ProcessorsTakingTurnsOnOneScratchGiveTheirOwnScratchResults) {
+  const Machine& table1 = Table1Machine();
+  const Machine distinct = MakeMachine(/*distinct=*/true);
+  constexpr std::uint32_t kShortBlock = 4096;
+  struct Run {
+    const Machine* machine;
+    std::uint32_t n;
+    FaultType fault;
+    std::string gear;
+    std::uint64_t seed;
+  };
+  const std::vector<Run> runs = {{&table1, kBlock, FaultType::kToothFracture, "G1", 5},
+                                 {&table1, kBlock, FaultType::kToothFracture, "G3", 11},
+                                 {&distinct, kShortBlock, FaultType::kToothFracture, "G2", 17}};
+  std::vector<BlockProcessor> own, lent;
+  std::vector<GearboxSimulator> healthy, faulty;
+  for (const Run& run : runs) {
+    for (auto* list : {&own, &lent}) {
+      auto p = BlockProcessor::Create(MakeSetup(*run.machine));
+      ASSERT_TRUE(p.ok()) << p.error();
+      list->push_back(std::move(p.value()));
+    }
+    healthy.push_back(StreamOf(*run.machine, FaultType::kNone, "", run.seed, run.n));
+    faulty.push_back(StreamOf(*run.machine, run.fault, run.gear, run.seed + 1, run.n));
+  }
+  BlockScratch scratch;
+  std::vector<BlockResult> own_results(runs.size()), lent_results(runs.size());
+  AccelBlock block;
+  for (int b = 0; b < kBaselineBlocks + 5; ++b) {
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      (b < kBaselineBlocks ? healthy : faulty)[i].NextBlock(block);
+      block.sequence = static_cast<std::uint64_t>(b);
+      const ProcessOutcome o = own[i].Process(block.view(), own_results[i]);
+      const ProcessOutcome l = lent[i].Process(block.view(), lent_results[i], scratch);
+      ASSERT_TRUE(o.accepted()) << o.message.view();
+      ASSERT_TRUE(l.accepted()) << l.message.view();
+      ExpectSameResult(own_results[i], lent_results[i],
+                       "machine " + std::to_string(i) + " block " + std::to_string(b));
+    }
+  }
+  EXPECT_EQ(scratch.areas(), 2u);  // one per shape
+  EXPECT_NE(lent_results[0].verdict.state, FaultState::kLearning);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const std::size_t n = runs[i].n;
+    std::vector<double> a(n), b(n), fa(n / 2 + 1), fb(n / 2 + 1);
+    ASSERT_TRUE(own[i].PathSignal(0, 0, a));
+    ASSERT_TRUE(lent[i].PathSignal(0, 0, b));
+    EXPECT_EQ(a, b);
+    ASSERT_TRUE(own[i].ForceAmplitude(1, fa));
+    ASSERT_TRUE(lent[i].ForceAmplitude(1, fb));
+    EXPECT_EQ(fa, fb);
+    const auto da = own[i].DominantPathSignal(1);
+    const auto db = lent[i].DominantPathSignal(1);
+    ASSERT_EQ(da.size(), n);
+    EXPECT_TRUE(std::equal(da.begin(), da.end(), db.begin(), db.end()));
+  }
+}
+
+// What the daemon does: Prepare(n, scratch) of every machine at load, then blocks of machines
+// of different shapes taking turns on the one scratch. No block allocates, the first of each
+// machine included (given results filled before: a BlockResult sizes itself on first use).
+TEST(BlockScratchTest, MachinesOfDifferentShapesTakingTurnsAllocateNothingAfterPrepare) {
+  const Machine& table1 = Table1Machine();
+  const Machine distinct = MakeMachine(/*distinct=*/true);
+  constexpr std::uint32_t kShortBlock = 4096;
+  const MachineSetup setup_a = MakeSetup(table1);
+  MachineSetup setup_b = MakeSetup(distinct);
+  setup_b.options.order_tracking = true;  // a different scratch key besides the length
+  GearboxSimulator sim_a = StreamOf(table1, FaultType::kNone, "", 3, kBlock);
+  GearboxSimulator sim_b = StreamOf(distinct, FaultType::kNone, "", 4, kShortBlock);
+  AccelBlock block_a, block_b;
+  BlockResult r_a, r_b;
+  {  // fill the results once, as a machine's previous processor would have
+    auto a = BlockProcessor::Create(setup_a);
+    auto b = BlockProcessor::Create(setup_b);
+    ASSERT_TRUE(a.ok() && b.ok());
+    sim_a.NextBlock(block_a);
+    sim_b.NextBlock(block_b);
+    ASSERT_TRUE(a->Process(block_a.view(), r_a).accepted());
+    ASSERT_TRUE(b->Process(block_b.view(), r_b).accepted());
+  }
+  auto a = BlockProcessor::Create(setup_a);
+  auto b = BlockProcessor::Create(setup_b);
+  ASSERT_TRUE(a.ok()) << a.error();
+  ASSERT_TRUE(b.ok()) << b.error();
+  BlockScratch scratch;
+  ASSERT_TRUE(a->Prepare(kBlock, scratch).ok());
+  ASSERT_TRUE(b->Prepare(kShortBlock, scratch).ok());
+  EXPECT_EQ(scratch.areas(), 2u);
+  for (std::uint64_t seq = 1; seq <= 4; ++seq) {
+    sim_a.NextBlock(block_a);
+    sim_b.NextBlock(block_b);
+    block_a.sequence = seq;
+    block_b.sequence = seq;
+    const long before = g_allocations.load();
+    const ProcessOutcome oa = a->Process(block_a.view(), r_a, scratch);
+    const ProcessOutcome ob = b->Process(block_b.view(), r_b, scratch);
+    const long after = g_allocations.load();
+    EXPECT_TRUE(oa.accepted()) << oa.message.view();
+    EXPECT_TRUE(ob.accepted()) << ob.message.view();
+    EXPECT_EQ(after - before, 0) << "blocks " << seq;
+  }
+  EXPECT_EQ(scratch.areas(), 2u);
 }
 
 TEST(BlockProcessorTest, EstimatesTheSpeedFromTheMeshLinesWhenNothingGivesIt) {
