@@ -282,12 +282,6 @@ Result<BlockProcessor> BlockProcessor::Create(MachineSetup setup) {
 
 Status BlockProcessor::Prepare(std::uint32_t samples_per_channel) {
   const BlockExpectations& e = impl_->machine.expect;
-  if (samples_per_channel < e.min_samples_per_channel ||
-      samples_per_channel > e.max_samples_per_channel) {
-    return Error{fmt::format("machine '{}': {} samples per channel is outside {}..{}",
-                             e.machine_id, samples_per_channel, e.min_samples_per_channel,
-                             e.max_samples_per_channel)};
-  }
   try {
     if (!impl_->own_scratch) impl_->own_scratch = std::make_unique<BlockScratch>();
   } catch (const std::exception& ex) {

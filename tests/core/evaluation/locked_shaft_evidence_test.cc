@@ -41,16 +41,9 @@ TEST(LockedShaftEvidence, NamesTheFaultyShaftAtThreeHundredRevolutionsPerMinute)
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.scenario.Key());
-    const ScenarioOutcome out = RunScenario(c.scenario);
-    ASSERT_TRUE(out.error.empty()) << out.error;
-    EXPECT_TRUE(out.score.detected);
-    EXPECT_TRUE(out.score.right_gear);
-    int named = 0;
-    for (const BlockVerdictRecord& v : out.verdicts) {
-      if (v.state != FaultState::kSuspected && v.state != FaultState::kAlarm) continue;
-      named += v.shaft == c.shaft ? 1 : 0;
-    }
-    EXPECT_GE(named, 3) << "blocks naming the " << c.shaft << " shaft";
+    const ScenarioOutcome out = testing::RunExpectingRightGear(c.scenario);
+    EXPECT_GE(testing::CountNamedShaft(out, c.shaft).naming, 3)
+        << "blocks naming the " << c.shaft << " shaft";
   }
 }
 

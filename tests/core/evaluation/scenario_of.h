@@ -2,8 +2,11 @@
 // (ScenarioSeed of its key), so a test runs exactly the scenario `gearpath evaluate` runs.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <string>
 
+#include "core/evaluation/evaluation_runner.h"
 #include "core/evaluation/scenario_matrix.h"
 
 namespace gearpath::testing {
@@ -22,6 +25,30 @@ inline Scenario ScenarioOf(PlantFamily family, TrainVariant variant, PlantFaultK
   s.unmodelled = unmodelled;
   s.seed = ScenarioSeed(s.Key());
   return s;
+}
+
+// Runs a faulty scenario that must be detected and put on its gear.
+inline ScenarioOutcome RunExpectingRightGear(const Scenario& s) {
+  ScenarioOutcome out = RunScenario(s);
+  EXPECT_TRUE(out.error.empty()) << out.error;
+  EXPECT_TRUE(out.score.detected);
+  EXPECT_TRUE(out.score.right_gear);
+  return out;
+}
+
+// How many blocks of `out` are alarmed (suspected or alarm), and how many of those name `shaft`.
+struct NamedShaftBlocks {
+  int alarmed = 0;
+  int naming = 0;
+};
+inline NamedShaftBlocks CountNamedShaft(const ScenarioOutcome& out, const std::string& shaft) {
+  NamedShaftBlocks n;
+  for (const BlockVerdictRecord& v : out.verdicts) {
+    if (v.state != FaultState::kSuspected && v.state != FaultState::kAlarm) continue;
+    ++n.alarmed;
+    n.naming += v.shaft == shaft ? 1 : 0;
+  }
+  return n;
 }
 
 }  // namespace gearpath::testing

@@ -35,18 +35,9 @@ TEST(ShaftEvidenceGate, NoiseLevelRisesDoNotNameTheShaft) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.scenario.Key());
-    const ScenarioOutcome out = RunScenario(c.scenario);
-    ASSERT_TRUE(out.error.empty()) << out.error;
-    EXPECT_TRUE(out.score.detected);
-    EXPECT_TRUE(out.score.right_gear);
-    int alarmed = 0;
-    int named = 0;
-    for (const BlockVerdictRecord& v : out.verdicts) {
-      if (v.state != FaultState::kSuspected && v.state != FaultState::kAlarm) continue;
-      ++alarmed;
-      named += v.shaft == c.shaft ? 1 : 0;
-    }
-    EXPECT_EQ(named, alarmed) << "alarmed blocks naming the " << c.shaft << " shaft";
+    const ScenarioOutcome out = testing::RunExpectingRightGear(c.scenario);
+    const testing::NamedShaftBlocks n = testing::CountNamedShaft(out, c.shaft);
+    EXPECT_EQ(n.naming, n.alarmed) << "alarmed blocks naming the " << c.shaft << " shaft";
   }
 }
 

@@ -26,28 +26,6 @@ BlockProcessor Make(const Machine& m, std::shared_ptr<SharedFrfOperators> shared
   return std::move(p.value());
 }
 
-// Every published figure of the block, bit for bit.
-void ExpectSameResult(const BlockResult& a, const BlockResult& b) {
-  EXPECT_EQ(a.sequence, b.sequence);
-  EXPECT_EQ(a.dominant_path, b.dominant_path);
-  ASSERT_EQ(a.paths.size(), b.paths.size());
-  for (std::size_t p = 0; p < a.paths.size(); ++p) {
-    EXPECT_EQ(a.paths[p].share, b.paths[p].share);
-    EXPECT_EQ(a.paths[p].criterion, b.paths[p].criterion);
-  }
-  ASSERT_EQ(a.shafts.size(), b.shafts.size());
-  for (std::size_t s = 0; s < a.shafts.size(); ++s) {
-    EXPECT_EQ(a.shafts[s].raw, b.shafts[s].raw);
-    EXPECT_EQ(a.shafts[s].reconstructed, b.shafts[s].reconstructed);
-  }
-  EXPECT_EQ(a.regularisation.alpha_median, b.regularisation.alpha_median);
-  EXPECT_EQ(a.regularisation.condition_max, b.regularisation.condition_max);
-  EXPECT_EQ(a.regularisation.relative_residual, b.regularisation.relative_residual);
-  EXPECT_EQ(a.score.score, b.score.score);
-  EXPECT_EQ(a.verdict.state, b.verdict.state);
-  EXPECT_EQ(a.verdict.gear_name, b.verdict.gear_name);
-}
-
 TEST(SharedFrfOperatorsTest, TwoMachinesOnOneSetShareOneOperatorAndJudgeAsAPrivateOne) {
   const Machine& m = Table1Machine();
   auto shared = SharedOf(m);

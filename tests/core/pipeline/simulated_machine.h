@@ -63,13 +63,14 @@ inline MachineSetup MakeSetup(const Machine& m) {
 }
 
 inline GearboxSimulator MakeSimulator(const Machine& m, FaultType type, const std::string& gear,
-                               std::uint64_t seed, bool report_speed = true) {
+                               std::uint64_t seed, bool report_speed = true,
+                               std::uint32_t block_length = kBlock) {
   SimulatorConfig c;
   c.machine_id = "sim";
   c.fault.type = type;
   c.fault.gear = gear;
   c.sample_rate_hz = kFs;
-  c.block_length = kBlock;
+  c.block_length = block_length;
   c.noise_relative = 0.05;
   c.seed = seed;
   c.report_speed = report_speed;
@@ -106,6 +107,66 @@ inline BlockProcessor LearnedProcessor(const Machine& m, std::uint64_t& sequence
 inline const Machine& Table1Machine() {
   static const Machine m = MakeMachine(false);
   return m;
+}
+
+// Every published figure of two results, exactly (same inputs, same operations: the same bits).
+inline void ExpectSameResult(const BlockResult& a, const BlockResult& b,
+                             const std::string& where = "") {
+  SCOPED_TRACE(where);
+  EXPECT_EQ(a.sequence, b.sequence);
+  EXPECT_EQ(a.speed_hz, b.speed_hz);
+  EXPECT_EQ(a.dominant_path, b.dominant_path);
+  EXPECT_EQ(a.indicator_channel, b.indicator_channel);
+  ASSERT_EQ(a.paths.size(), b.paths.size());
+  for (std::size_t i = 0; i < a.paths.size(); ++i) {
+    EXPECT_EQ(a.paths[i].energy, b.paths[i].energy) << "path " << i;
+    EXPECT_EQ(a.paths[i].share, b.paths[i].share) << "path " << i;
+    EXPECT_EQ(a.paths[i].criterion, b.paths[i].criterion) << "path " << i;
+  }
+  for (const auto& [x, y] : {std::pair{&a.raw_band, &b.raw_band},
+                             std::pair{&a.reconstructed_band, &b.reconstructed_band}}) {
+    EXPECT_EQ(x->centre_hz, y->centre_hz);
+    EXPECT_EQ(x->width_hz, y->width_hz);
+    EXPECT_EQ(x->level, y->level);
+    EXPECT_EQ(x->kurtosis, y->kurtosis);
+    EXPECT_EQ(x->significant, y->significant);
+  }
+  ASSERT_EQ(a.shafts.size(), b.shafts.size());
+  for (std::size_t i = 0; i < a.shafts.size(); ++i) {
+    EXPECT_EQ(a.shafts[i].raw, b.shafts[i].raw) << "shaft " << i;
+    EXPECT_EQ(a.shafts[i].reconstructed, b.shafts[i].reconstructed) << "shaft " << i;
+    EXPECT_EQ(a.shafts[i].raw_harmonics, b.shafts[i].raw_harmonics) << "shaft " << i;
+    EXPECT_EQ(a.shafts[i].reconstructed_harmonics, b.shafts[i].reconstructed_harmonics);
+    EXPECT_EQ(a.shafts[i].raw_threshold, b.shafts[i].raw_threshold) << "shaft " << i;
+  }
+  ASSERT_EQ(a.condition.size(), b.condition.size());
+  for (std::size_t i = 0; i < a.condition.size(); ++i) {
+    const BlockConditionIndicators& x = a.condition[i];
+    const BlockConditionIndicators& y = b.condition[i];
+    EXPECT_EQ(x.revolutions, y.revolutions) << "set " << i;
+    EXPECT_EQ(x.score, y.score) << "set " << i;
+    ASSERT_EQ(x.value.size(), y.value.size());
+    for (std::size_t k = 0; k < x.value.size(); ++k) {
+      EXPECT_EQ(x.value[k], y.value[k]) << "set " << i << " value " << k;
+      EXPECT_EQ(x.z[k], y.z[k]) << "set " << i << " z " << k;
+    }
+  }
+  EXPECT_EQ(a.score.score, b.score.score);
+  EXPECT_EQ(a.score.limit_z, b.score.limit_z);
+  EXPECT_EQ(a.score.exceed_count, b.score.exceed_count);
+  EXPECT_EQ(a.localisation.group, b.localisation.group);
+  EXPECT_EQ(a.localisation.shaft_evidence, b.localisation.shaft_evidence);
+  EXPECT_EQ(a.localisation.shaft_evidence_accumulated, b.localisation.shaft_evidence_accumulated);
+  EXPECT_EQ(a.localisation.mesh_evidence, b.localisation.mesh_evidence);
+  EXPECT_EQ(a.localisation.signature_excess, b.localisation.signature_excess);
+  EXPECT_EQ(a.verdict.state, b.verdict.state);
+  EXPECT_EQ(a.verdict.gear, b.verdict.gear);
+  EXPECT_EQ(a.verdict.gear_name, b.verdict.gear_name);
+  EXPECT_EQ(a.verdict.confidence, b.verdict.confidence);
+  EXPECT_EQ(a.verdict.candidates, b.verdict.candidates);
+  EXPECT_EQ(a.regularisation.alpha_median, b.regularisation.alpha_median);
+  EXPECT_EQ(a.regularisation.condition_max, b.regularisation.condition_max);
+  EXPECT_EQ(a.regularisation.relative_residual, b.regularisation.relative_residual);
 }
 
 }  // namespace gearpath::testing
