@@ -127,9 +127,16 @@ dds::Qos BlockReaderQos(std::size_t instances) {
   return qos;
 }
 
-// The block topic with the machine filter set, ready for the block reader.
+// The block topic with the machine filter set, ready for the block reader. The configured
+// machines are admitted before the reader exists: a publisher may write as soon as the reader
+// matches, and a block that arrived while the start-up still prepared the machines (Adopt) was
+// dropped as foreign (the demo's first healthy block, so its baseline took in a faulty one).
 const dds::Topic<gearpath_AccelBlock>& FilteredByMachine(dds::Topic<gearpath_AccelBlock>& topic,
-                                                         MachineIdFilter& filter) {
+                                                         MachineIdFilter& filter,
+                                                         const DaemonConfig& c) {
+  std::vector<std::string> ids;
+  for (const auto& m : c.machines) ids.push_back(m.id);
+  filter.Admit(std::move(ids));
   topic.SetSampleFilter(&MachineIdFilter::Accept, &filter);
   return topic;
 }
@@ -150,7 +157,7 @@ struct Gearpathd::Impl {
         status_topic(participant, first.config.topics.status),
         health_topic(participant, first.config.topics.machine_health),
         block_instances(BlockInstanceLimit(first.config)),
-        block_reader(FilteredByMachine(block_topic, machine_filter),
+        block_reader(FilteredByMachine(block_topic, machine_filter, first.config),
                      BlockReaderQos(block_instances)),
         status_reader(status_topic),
         dominant_writer(dominant_topic),

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -242,6 +243,35 @@ TEST(BlockScratchTest, ProcessorsTakingTurnsOnOneScratchGiveTheirOwnScratchResul
     ASSERT_EQ(da.size(), n);
     EXPECT_TRUE(std::equal(da.begin(), da.end(), db.begin(), db.end()));
   }
+}
+
+// What the daemon also does: a machine's blocks go to whichever worker is free, so one machine
+// alternates between the workers' scratches. Nothing a block leaves for the next may live in a
+// scratch: through learning into a fault, every result equals the own-scratch run's, and the
+// fault is alarmed on its gear (independent truth: the seeded fracture on G1).
+TEST(BlockScratchTest, AMachineMovingBetweenWorkersGivesItsOwnScratchResults) {
+  const Machine& table1 = Table1Machine();
+  auto own = BlockProcessor::Create(MakeSetup(table1));
+  auto moving = BlockProcessor::Create(MakeSetup(table1));
+  ASSERT_TRUE(own.ok() && moving.ok());
+  std::array<BlockScratch, 2> workers;
+  ASSERT_TRUE(own->Prepare(kBlock).ok());
+  for (BlockScratch& w : workers) ASSERT_TRUE(moving->Prepare(kBlock, w).ok());
+  GearboxSimulator healthy = MakeSimulator(table1, FaultType::kNone, "", 5);
+  GearboxSimulator faulty = MakeSimulator(table1, FaultType::kToothFracture, "G1", 6);
+  AccelBlock block;
+  BlockResult r_own, r_moving;
+  bool alarmed = false;
+  for (std::uint64_t seq = 1; seq <= 30; ++seq) {
+    (seq <= 22 ? healthy : faulty).NextBlock(block);
+    block.sequence = seq;
+    ASSERT_TRUE(own->Process(block.view(), r_own).accepted());
+    ASSERT_TRUE(moving->Process(block.view(), r_moving, workers[seq % 2]).accepted());
+    ExpectSameResult(r_own, r_moving, "block " + std::to_string(seq));
+    alarmed = alarmed || (r_moving.verdict.state == FaultState::kAlarm &&
+                          r_moving.verdict.gear_name == "G1");
+  }
+  EXPECT_TRUE(alarmed) << "the fracture on G1 was never alarmed on G1";
 }
 
 // What the daemon does: Prepare(n, scratch) of every machine at load, then blocks of machines
