@@ -201,6 +201,8 @@ struct BlockProcessor::Impl {
     return nullptr;
   }
   Status Configure(std::size_t n);
+  // The own scratch, made when first needed (allocates once); null when memory runs out.
+  BlockScratch* OwnScratch() noexcept;
   // The own scratch's area for the last accepted block's shape, made when missing (allocates
   // once); null when it cannot be made.
   ShapeScratch* OwnAreaForLastShape() noexcept;
@@ -233,11 +235,21 @@ Status BlockProcessor::Impl::Configure(std::size_t n) {
   return Status::Ok();
 }
 
-ShapeScratch* BlockProcessor::Impl::OwnAreaForLastShape() noexcept {
-  if (last_shape == nullptr) return nullptr;
+BlockScratch* BlockProcessor::Impl::OwnScratch() noexcept {
   try {
     if (!own_scratch) own_scratch = std::make_unique<BlockScratch>();
-    auto area = own_scratch->Provide(last_shape->scratch_key, machine);
+  } catch (const std::exception&) {
+    return nullptr;
+  }
+  return own_scratch.get();
+}
+
+ShapeScratch* BlockProcessor::Impl::OwnAreaForLastShape() noexcept {
+  if (last_shape == nullptr) return nullptr;
+  BlockScratch* own = OwnScratch();
+  if (own == nullptr) return nullptr;
+  try {
+    auto area = own->Provide(last_shape->scratch_key, machine);
     return area ? area.value() : nullptr;
   } catch (const std::exception&) {
     return nullptr;
@@ -281,14 +293,12 @@ Result<BlockProcessor> BlockProcessor::Create(MachineSetup setup) {
 }
 
 Status BlockProcessor::Prepare(std::uint32_t samples_per_channel) {
-  const BlockExpectations& e = impl_->machine.expect;
-  try {
-    if (!impl_->own_scratch) impl_->own_scratch = std::make_unique<BlockScratch>();
-  } catch (const std::exception& ex) {
-    return Error{fmt::format("machine '{}': configuring for {} samples failed: {}", e.machine_id,
-                             samples_per_channel, ex.what())};
+  BlockScratch* own = impl_->OwnScratch();
+  if (own == nullptr) {
+    return Error{fmt::format("machine '{}': no memory for the processor's scratch",
+                             impl_->machine.expect.machine_id)};
   }
-  return Prepare(samples_per_channel, *impl_->own_scratch);
+  return Prepare(samples_per_channel, *own);
 }
 
 Status BlockProcessor::Prepare(std::uint32_t samples_per_channel, BlockScratch& scratch) {
@@ -316,17 +326,14 @@ bool BlockProcessor::configured_for(std::uint32_t samples_per_channel) const noe
 }
 
 ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult& out) noexcept {
-  if (!impl_->own_scratch) {
-    try {
-      impl_->own_scratch = std::make_unique<BlockScratch>();
-    } catch (const std::exception&) {
-      ProcessOutcome outcome;
-      outcome.reason = RejectReason::kNotConfigured;
-      outcome.message.Assign("no memory for the processor's scratch");
-      return outcome;
-    }
+  BlockScratch* own = impl_->OwnScratch();
+  if (own == nullptr) {
+    ProcessOutcome outcome;
+    outcome.reason = RejectReason::kNotConfigured;
+    outcome.message.Assign("no memory for the processor's scratch");
+    return outcome;
   }
-  return Process(block, out, *impl_->own_scratch);
+  return Process(block, out, *own);
 }
 
 ProcessOutcome BlockProcessor::Process(const AccelBlockView& block, BlockResult& out,

@@ -26,7 +26,7 @@ Result<ShapeScratch*> BlockScratch::Provide(const ShapeScratchKey& key,
       return area.get();
     }
   }
-  auto area = ShapeScratch::Create(machine, key.n);
+  auto area = ShapeScratch::Create(key, machine);
   if (!area) return Error{area.error()};
   areas_.push_back(std::move(area.value()));
   return areas_.back().get();

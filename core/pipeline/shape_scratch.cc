@@ -25,12 +25,11 @@ Result<ShapeScratchKey> ShapeScratchKey::Of(const MachineContext& machine, std::
   return key;
 }
 
-Result<std::unique_ptr<ShapeScratch>> ShapeScratch::Create(const MachineContext& machine,
-                                                           std::size_t n) {
-  auto key = ShapeScratchKey::Of(machine, n);
-  if (!key) return Error{key.error()};
+Result<std::unique_ptr<ShapeScratch>> ShapeScratch::Create(const ShapeScratchKey& key,
+                                                           const MachineContext& machine) {
+  const std::size_t n = key.n;
   auto s = std::make_unique<ShapeScratch>();
-  s->key = key.value();
+  s->key = key;
   s->n = n;
   s->bins = n / 2 + 1;
   const double fs = s->key.sample_rate_hz;

@@ -91,9 +91,10 @@ struct ShapeScratch {
   // ever asked for it; it lives until the next block.
   std::vector<double> dominant_time;
 
-  // Plans and sizes everything for `machine`'s blocks of n samples. Allocates (FFTW's planner
-  // runs under FftPlan's lock).
-  static Result<std::unique_ptr<ShapeScratch>> Create(const MachineContext& machine, std::size_t n);
+  // Plans and sizes everything for `machine`'s blocks of key.n samples (`key` is
+  // ShapeScratchKey::Of(machine, n)). Allocates (FFTW's planner runs under FftPlan's lock).
+  static Result<std::unique_ptr<ShapeScratch>> Create(const ShapeScratchKey& key,
+                                                      const MachineContext& machine);
 
   // True when this area serves `machine` (whose key is `key`) without allocating.
   bool Serves(const ShapeScratchKey& machine_key, const MachineContext& machine) const noexcept;
