@@ -220,19 +220,14 @@ IdentificationOperator::Bin IdentificationOperator::BuildBin(
   const bool mwi = options.method == InverseMethod::kMwi;
   Bin bin;
   if (mwi) {
-    // MWI inverts B = H W^{1/2}, whose singular values are not H's. H^H H, formed anyway for
-    // the weights, gives H's condition number where its eigenvalues are accurate enough
-    // (condition_number.h); the SVD of B gives B's.
+    // MWI inverts B = H W^{1/2}; H^H H, formed for the weights, also starts B's SVD.
     const Eigen::MatrixXcd gram = GramMatrix(h);
     bin.svd = DecomposeScaled(h, WeightsOrZero(gram).cwiseSqrt(), &gram);
-    bin.condition_weighted = ConditionFromSingularValues(bin.svd.sigma);
-    bin.condition_h = ConditionFromGram(h, gram);
   } else {
-    // Tikhonov and least squares invert H itself: one SVD gives the condition number too.
+    // Tikhonov and least squares invert H itself.
     bin.svd = DecomposeScaled(h, Eigen::VectorXd::Ones(n));
-    bin.condition_weighted = ConditionFromSingularValues(bin.svd.sigma);
-    bin.condition_h = bin.condition_weighted;
   }
+  bin.condition_weighted = ConditionFromSingularValues(bin.svd.sigma);
   const double sigma_max = bin.svd.sigma.size() > 0 ? bin.svd.sigma(0) : 0.0;
   const double cutoff = options.method == InverseMethod::kLeastSquares
                             ? LeastSquaresCutoff(sigma_max, m, n, options.rank_tolerance)
@@ -290,7 +285,6 @@ BinFigures IdentificationOperator::StaticFigures(Eigen::Index bin) const {
   const Bin& b = bins_->at(static_cast<std::size_t>(bin));
   BinFigures f;
   f.parameter = b.parameter;
-  f.condition_h = b.condition_h;
   f.condition_weighted = b.condition_weighted;
   f.rank = b.rank;
   f.outcome = b.outcome;
@@ -365,7 +359,6 @@ IdentifyStatus IdentificationOperator::Identify(Eigen::Index bin,
   }
   if (figures != nullptr) {
     figures->parameter = parameter;
-    figures->condition_h = b.condition_h;
     figures->condition_weighted = b.condition_weighted;
     figures->rank = b.rank;
     figures->outcome = outcome;

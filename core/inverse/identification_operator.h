@@ -62,8 +62,11 @@ Status ValidateIdentificationOptions(const IdentificationOptions& options);
 struct BinFigures {
   double parameter = 0.0;             // alpha (MWI) or lambda (Tikhonov) used; 0 for LS,
                                       // +infinity where the forces were set to 0
-  double condition_h = 0.0;           // sigma_max / sigma_min of H (+inf if singular)
-  double condition_weighted = 0.0;    // the same for H W^{1/2} (MWI); = condition_h otherwise
+  // sigma_max / sigma_min (+inf if singular) of the operator inverted: H W^{1/2} for MWI, H
+  // otherwise. H's own is not computed here (nothing on the processing path reads it, and for
+  // MWI it took one more eigen-decomposition per bin, a fifth of the precompute): see
+  // ConditionFromGram (condition_number.h).
+  double condition_weighted = 0.0;
   double relative_residual = 0.0;     // ||x - H F|| / ||x|| (0 for x = 0)
   Eigen::Index rank = 0;              // numerical rank of the inverted operator
   RuleOutcome outcome = RuleOutcome::kAsConfigured;
@@ -128,7 +131,6 @@ class IdentificationOperator {
   struct Bin {
     ScaledSvd svd;  // u and v are released where G is precomputed (Identify uses G alone)
     double parameter = 0.0;
-    double condition_h = 0.0;
     double condition_weighted = 0.0;
     Eigen::Index rank = 0;
     RuleOutcome outcome = RuleOutcome::kAsConfigured;
@@ -151,8 +153,8 @@ class IdentificationOperator {
   };
 
   IdentificationOperator() = default;
-  // Everything Create computes for one bin: one SVD of the inverted operator and, for MWI,
-  // H's condition number from H^H H. Depends on h and the options only.
+  // Everything Create computes for one bin: one SVD of the inverted operator. Depends on h and
+  // the options only.
   static Bin BuildBin(const Eigen::MatrixXcd& h, const IdentificationOptions& options,
                       bool precomputed, BinOperator* op);
   double ChooseParameter(const Bin& bin, double outside2, RuleOutcome* outcome) noexcept;
