@@ -48,6 +48,8 @@ fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 echo "C++ $bench; NumPy tests/bench/numpy_peer.py --reps $reps ($python); rounds: $rounds"
+# Both sides inherit it; the systemd unit sets glibc.malloc.hugetlb=1 (docs/performance.md).
+echo "GLIBC_TUNABLES=${GLIBC_TUNABLES:-(unset)}"
 filter='ReferenceBlock/channels:12/samples:16000/tracking:0/drift:0$|ReferencePrecompute'
 for ((r = 1; r <= rounds; r++)); do
   cut -d' ' -f1 /proc/loadavg >"$work/load$r"
