@@ -111,6 +111,7 @@ class GearpathdOverDds : public ::testing::Test {
                   : std::make_unique<ChildProcess>("/usr/bin/env", argv,
                                                    (dir_ / "gearpathd.log").string());
     ASSERT_TRUE(daemon_->started());
+    if (!wait_until_ready_) return;
     // Ready = its Status arrives and it has discovered our block writer.
     ASSERT_TRUE(WaitStatus([](const gearpath_MachineStatus&) { return true; }, 90s))
         << "gearpathd did not publish Status; its log:\n"
@@ -250,6 +251,9 @@ class GearpathdOverDds : public ::testing::Test {
   std::string config_path_;
   json config_;
   std::vector<std::string> daemon_environment_;  // "NAME=value" for the daemon, if any
+  // false (set in a test's constructor): SetUp returns once the daemon is started, and the
+  // test decides what to wait for.
+  bool wait_until_ready_ = true;
   std::vector<ChannelInfo> channels_;
   std::mt19937 rng_{12345};
   gearpath_MachineStatus last_status_{};
