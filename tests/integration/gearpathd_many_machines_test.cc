@@ -259,7 +259,9 @@ TEST_F(GearpathdManyMachines, AReloadDisposesARemovedMachineAndRefusesMoreThanTh
                               dds::GetString(samples[i]->machine_id) == far &&
                               dds::GetString(samples[i]->daemon_id) == daemon_id_);
     }
-    if (!disposed) ASSERT_TRUE(waitset_->Wait(triggered, 1s).ok());
+    if (!disposed) {
+      ASSERT_TRUE(waitset_->Wait(triggered, 1s).ok());
+    }
   }
   EXPECT_TRUE(disposed) << "no dispose of " << far << "'s MachineHealth instance";
   // Every remaining machine is still reported, numbered in the new configuration.
