@@ -63,9 +63,8 @@ struct BinFigures {
   double parameter = 0.0;             // alpha (MWI) or lambda (Tikhonov) used; 0 for LS,
                                       // +infinity where the forces were set to 0
   // sigma_max / sigma_min (+inf if singular) of the operator inverted: H W^{1/2} for MWI, H
-  // otherwise. H's own is not computed here (nothing on the processing path reads it, and for
-  // MWI it took one more eigen-decomposition per bin, a fifth of the precompute): see
-  // ConditionFromGram (condition_number.h).
+  // otherwise. H's own is not computed (nothing on the processing path read it, and for MWI it
+  // took one more eigen-decomposition per bin, a fifth of the precompute).
   double condition_weighted = 0.0;
   double relative_residual = 0.0;     // ||x - H F|| / ||x|| (0 for x = 0)
   Eigen::Index rank = 0;              // numerical rank of the inverted operator
