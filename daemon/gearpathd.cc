@@ -127,6 +127,14 @@ dds::Qos BlockReaderQos(std::size_t instances) {
   return qos;
 }
 
+// The configured machines' ids, in configuration order.
+std::vector<std::string> MachineIds(const DaemonConfig& c) {
+  std::vector<std::string> ids;
+  ids.reserve(c.machines.size());
+  for (const auto& m : c.machines) ids.push_back(m.id);
+  return ids;
+}
+
 // The block topic with the machine filter set, ready for the block reader. The configured
 // machines are admitted before the reader exists: a publisher may write as soon as the reader
 // matches, and a block that arrived while the start-up still prepared the machines (Adopt) was
@@ -134,9 +142,7 @@ dds::Qos BlockReaderQos(std::size_t instances) {
 const dds::Topic<gearpath_AccelBlock>& FilteredByMachine(dds::Topic<gearpath_AccelBlock>& topic,
                                                          MachineIdFilter& filter,
                                                          const DaemonConfig& c) {
-  std::vector<std::string> ids;
-  for (const auto& m : c.machines) ids.push_back(m.id);
-  filter.Admit(std::move(ids));
+  filter.Admit(MachineIds(c));
   topic.SetSampleFilter(&MachineIdFilter::Accept, &filter);
   return topic;
 }
@@ -371,8 +377,7 @@ void Gearpathd::Impl::Adopt(Generation generation) {
   std::lock_guard metrics_view(metrics_view_mutex);
   MachineSet previous = std::move(machines);
   machines = std::move(generation.machines);
-  const std::vector<std::string> previous_ids = std::exchange(machine_ids, {});
-  for (const auto& m : c.machines) machine_ids.push_back(m.id);
+  const std::vector<std::string> previous_ids = std::exchange(machine_ids, MachineIds(c));
   machine_filter.Admit(machine_ids);
   // MachineHealth instances of machines this daemon no longer serves (all of them if its id
   // changed) are disposed, so that subscribers and late joiners stop seeing them.
