@@ -310,9 +310,10 @@ ParamSpec AnalysisSection() {
                       "Upper end of the mesh-frequency speed search, Hz (0: 1.2 x nominal).",
                       0.0, 10000.0, 0.0),
                Boolean("order_tracking",
-                       "Track the speed's variation within each block from its strongest mesh "
-                       "tone and average the shafts at the tracked angle (off: constant speed "
-                       "per block; off by default, docs/diagnosis.md).",
+                       "Track the speed's variation within each block from a mesh tone (the "
+                       "mesh harmonic whose phase a smooth speed explains best) and average the "
+                       "shafts at the tracked angle (off: constant speed per block; off by "
+                       "default, docs/diagnosis.md).",
                        false),
                Boolean("localisation_tracking",
                        "With order_tracking off: track the speed within each block for the "

@@ -103,27 +103,36 @@ Result<OrderTracker> OrderTracker::Create(std::size_t block_length, double sampl
 }
 
 Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, double carrier_hz,
-                                             double half_band_hz,
-                                             std::span<double> warp) noexcept {
-  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, n_); !s) return Error{s.error()};
+                                             double half_band_hz, std::span<double> warp) noexcept {
+  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, n_); !s) {
+    return Fail([&] { return s.error(); });
+  }
   if (warp.size() != n_) {
-    return Error{std::string(kStage) + ": warp has " + std::to_string(warp.size()) +
-                 " values, need " + std::to_string(n_)};
+    return Fail([&] {
+      return std::string(kStage) + ": warp has " + std::to_string(warp.size()) + " values, need " +
+             std::to_string(n_);
+    });
   }
   const double bin_hz = fs_ / static_cast<double>(n_);
   if (!std::isfinite(carrier_hz) || !std::isfinite(half_band_hz) || half_band_hz <= 0.0 ||
       carrier_hz - half_band_hz <= 0.0 || carrier_hz + half_band_hz >= 0.5 * fs_) {
-    return Error{std::string(kStage) + ": band " + Hz(carrier_hz) + " +/- " + Hz(half_band_hz) +
-                 " does not fit in (0, " + Hz(0.5 * fs_) + ")"};
+    return Fail([&] {
+      return std::string(kStage) + ": band " + Hz(carrier_hz) + " +/- " + Hz(half_band_hz) +
+             " does not fit in (0, " + Hz(0.5 * fs_) + ")";
+    });
   }
   const auto k_lo = static_cast<std::size_t>(std::ceil((carrier_hz - half_band_hz) / bin_hz));
   const auto k_hi = static_cast<std::size_t>(std::floor((carrier_hz + half_band_hz) / bin_hz));
   if (k_hi < k_lo + 2) {
-    return Error{std::string(kStage) + ": band +/- " + Hz(half_band_hz) + " holds " +
-                 std::to_string(k_hi + 1 - std::min(k_hi + 1, k_lo)) +
-                 " bins of " + Hz(bin_hz) + " (need at least 3: a longer block)"};
+    return Fail([&] {
+      return std::string(kStage) + ": band +/- " + Hz(half_band_hz) + " holds " +
+             std::to_string(k_hi + 1 - std::min(k_hi + 1, k_lo)) + " bins of " + Hz(bin_hz) +
+             " (need at least 3: a longer block)";
+    });
   }
-  if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) return Error{s.error()};
+  if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) {
+    return Fail([&] { return s.error(); });
+  }
 
   const auto k_c = static_cast<std::size_t>(std::lround(carrier_hz / bin_hz));
   // Phase slope left by demodulating at bin k_c instead of at the carrier (rad per sample).
@@ -153,8 +162,10 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
       band_power += std::norm(bins[k]);
     }
     if (!(band_power > 0.0)) {
-      return Error{std::string(kStage) + ": no power within " + Hz(carrier_hz) + " +/- " +
-                   Hz(half_band_hz) + " (carrier absent)"};
+      return Fail([&] {
+        return std::string(kStage) + ": no power within " + Hz(carrier_hz) + " +/- " +
+               Hz(half_band_hz) + " (carrier absent)";
+      });
     }
     if (it == 0) {
       // The carrier must stand out of the floor beside its band (median power per bin of up
@@ -171,11 +182,13 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
         std::nth_element(floor.begin(), mid, floor.begin() + static_cast<std::ptrdiff_t>(count));
         const double per_bin = band_power / static_cast<double>(width);
         if (!(per_bin > options_.min_carrier_to_floor * *mid)) {
-          return Error{std::string(kStage) + ": no carrier within " + Hz(carrier_hz) + " +/- " +
-                       Hz(half_band_hz) + " (band power per bin " +
-                       std::to_string(*mid > 0.0 ? per_bin / *mid : 0.0) +
-                       " x the floor beside it, need " +
-                       std::to_string(options_.min_carrier_to_floor) + ": carrier absent)"};
+          return Fail([&] {
+            return std::string(kStage) + ": no carrier within " + Hz(carrier_hz) + " +/- " +
+                   Hz(half_band_hz) + " (band power per bin " +
+                   std::to_string(*mid > 0.0 ? per_bin / *mid : 0.0) +
+                   " x the floor beside it, need " + std::to_string(options_.min_carrier_to_floor) +
+                   ": carrier absent)";
+          });
         }
       }
     }
@@ -224,7 +237,9 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
       }
     }
     if (!(weight_sum > 0.0)) {
-      return Error{std::string(kStage) + ": the carrier's envelope is zero inside the block"};
+      return Fail([&] {
+        return std::string(kStage) + ": the carrier's envelope is zero inside the block";
+      });
     }
     for (int k = degree + 1; k < kBasis; ++k) normal(k, k) = 1.0;
     normal = normal.selfadjointView<Eigen::Lower>();
@@ -250,10 +265,12 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
     result.phase_residual_rad = std::sqrt(residual / weight_sum);
     if (!std::isfinite(result.phase_residual_rad) ||
         result.phase_residual_rad > options_.max_phase_residual_rad) {
-      return Error{std::string(kStage) + ": the carrier at " + Hz(carrier_hz) +
-                   " is too noisy to track (phase residual " +
-                   std::to_string(result.phase_residual_rad) + " rad, limit " +
-                   std::to_string(options_.max_phase_residual_rad) + ")"};
+      return Fail([&] {
+        return std::string(kStage) + ": the carrier at " + Hz(carrier_hz) +
+               " is too noisy to track (phase residual " +
+               std::to_string(result.phase_residual_rad) + " rad, limit " +
+               std::to_string(options_.max_phase_residual_rad) + ")";
+      });
     }
     // 5. Move the warp by the angle error (angle zero stays at sample 0).
     const double origin = phase_[0];
@@ -262,8 +279,10 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
     }
     for (std::size_t i = 1; i < n_; ++i) {
       if (!(next_[i] > next_[i - 1])) {
-        return Error{std::string(kStage) + ": the tracked angle of " + Hz(carrier_hz) +
-                     " does not increase at sample " + std::to_string(i)};
+        return Fail([&] {
+          return std::string(kStage) + ": the tracked angle of " + Hz(carrier_hz) +
+                 " does not increase at sample " + std::to_string(i);
+        });
       }
     }
     std::copy(next_.begin(), next_.end(), warp.begin());
@@ -274,6 +293,16 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
   }
   result.mean_speed_ratio = last / warp[n_ - 1];
   return result;
+}
+
+std::optional<OrderTrackResult> OrderTracker::TryTrack(std::span<const double> signal,
+                                                       double carrier_hz, double half_band_hz,
+                                                       std::span<double> warp) noexcept {
+  quiet_ = true;
+  Result<OrderTrackResult> r = Track(signal, carrier_hz, half_band_hz, warp);
+  quiet_ = false;
+  if (!r) return std::nullopt;
+  return r.value();
 }
 
 }  // namespace gearpath

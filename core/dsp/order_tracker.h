@@ -41,6 +41,7 @@
 #include <cstddef>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/common/result.h"
@@ -49,9 +50,9 @@
 namespace gearpath {
 
 struct OrderTrackerOptions {
-  int iterations = 3;            // 1..8
-  int degree = 6;                // polynomial degree of the phase error, 1..kMaxDegree
-  double edge_fraction = 0.05;   // each end of the block left out of the fit, [0, 0.3]
+  int iterations = 3;           // 1..8
+  int degree = 6;               // polynomial degree of the phase error, 1..kMaxDegree
+  double edge_fraction = 0.05;  // each end of the block left out of the fit, [0, 0.3]
   // Tracking fails (the caller keeps constant speed) when the band's mean power per bin is
   // under this multiple of the median power per bin beside the band (no carrier), ...
   double min_carrier_to_floor = 10.0;
@@ -85,9 +86,18 @@ class OrderTracker {
   // angle does not increase.
   Result<OrderTrackResult> Track(std::span<const double> signal, double carrier_hz,
                                  double half_band_hz, std::span<double> warp) noexcept;
+  // Track() without the message, for a caller that tries several carriers in every block:
+  // nullopt where Track() fails. Allocates nothing on either path.
+  std::optional<OrderTrackResult> TryTrack(std::span<const double> signal, double carrier_hz,
+                                           double half_band_hz, std::span<double> warp) noexcept;
 
  private:
   OrderTracker() = default;
+  // Track()'s failure: the message `build()` makes, or none inside TryTrack().
+  template <typename Build>
+  Error Fail(Build build) const noexcept {
+    return quiet_ ? Error{std::string()} : Error{build()};
+  }
 
   std::size_t n_ = 0;
   double fs_ = 0.0;
@@ -97,6 +107,7 @@ class OrderTracker {
   std::vector<double> phase_;
   std::vector<double> weight_;
   std::vector<double> next_;
+  bool quiet_ = false;  // inside TryTrack()
 };
 
 // Reads a warp at a fractional position u (linear between its samples, extrapolated with the

@@ -86,8 +86,9 @@ struct AnalysisOptions {
   // (or 1..100 Hz when there is no nominal).
   double speed_search_lo_hz = 0.0;
   double speed_search_hi_hz = 0.0;
-  // Track the speed's variation within each block from its strongest mesh tone and average the
-  // shafts at the tracked angle (core/dsp/order_tracker.h); off = constant speed per block.
+  // Track the speed's variation within each block from a mesh tone (the harmonic whose phase a
+  // smooth speed explains best, condition_indicator_stage.cc) and average the shafts at the
+  // tracked angle (core/dsp/order_tracker.h); off = constant speed per block.
   // Off by default: it helped the tuning families and hurt the held-out one (docs/diagnosis.md).
   bool order_tracking = false;
   // Track it for the shaft localisation only (when order_tracking is off): the exclusive

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <optional>
 #include <utility>
 
 #include "core/diagnosis/mesh_signature.h"
@@ -21,6 +22,8 @@ constexpr double kCommonOrderTolerance = 0.1;
 // by well under 1 %).
 constexpr double kTrackingGain = 1.02;
 constexpr int kCoherenceHarmonics = 4;
+// Mesh harmonics tried as the tracking carrier (each one costs a Track()).
+constexpr int kCarrierHarmonics = 3;
 // Floor of the locked evidence, which can come out negative when nothing is locked (the
 // baseline is judged on a log scale).
 constexpr double kLockedEvidenceFloor = 1e-30;
@@ -131,34 +134,51 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
   }
   const double half_band = 0.75 * slowest;
   const double nyquist = 0.5 * ctx.machine.setup.options.sample_rate_hz;
-  // Carrier: the mesh fundamental with the most power in its band, on the channel where it
-  // is strongest.
-  double best_power = 0.0;
+  // Carrier: each of the first harmonics of every mesh is a candidate, on the channel where its
+  // band is strongest; the one tracked with the smallest phase residual wins. A pump tone or
+  // another shaft's line inside one band beats with that carrier and leaves a residual the
+  // speed does not explain; the strongest band alone was often such a band (its power includes
+  // the foreign line), and its warp moved by several samples from block to block where the
+  // drift was the same in every block (docs/diagnosis.md, section 9a).
+  bool tracked = false;
+  double best_residual = 0.0;
   double carrier = 0.0;
   double carrier_shaft = 0.0;
   std::size_t channel = 0;
   for (const MeshLines& ml : w.meshes) {
-    const double fc = ml.mesh_hz;
-    if (!(fc - half_band > 0.0) || !(fc + half_band < nyquist)) continue;
-    const auto lo = static_cast<std::size_t>(std::ceil((fc - half_band) / w.bin_hz));
-    const auto hi =
-        std::min(w.bins - 1, static_cast<std::size_t>(std::floor((fc + half_band) / w.bin_hz)));
-    for (std::size_t c = 0; c < ctx.machine.channels; ++c) {
-      double power = 0.0;
-      for (std::size_t k = lo; k <= hi; ++k) power += std::norm(s.spec[c * w.bins + k]);
-      if (power > best_power) {
-        best_power = power;
-        carrier = fc;
-        carrier_shaft = ml.shaft_hz[0];
-        channel = c;
+    for (int h = 1; h <= kCarrierHarmonics; ++h) {
+      const double fc = h * ml.mesh_hz;
+      if (!(fc - half_band > 0.0) || !(fc + half_band < nyquist)) continue;
+      const auto lo = static_cast<std::size_t>(std::ceil((fc - half_band) / w.bin_hz));
+      const auto hi =
+          std::min(w.bins - 1, static_cast<std::size_t>(std::floor((fc + half_band) / w.bin_hz)));
+      double band_power = 0.0;
+      std::size_t band_channel = 0;
+      for (std::size_t c = 0; c < ctx.machine.channels; ++c) {
+        double power = 0.0;
+        for (std::size_t k = lo; k <= hi; ++k) power += std::norm(s.spec[c * w.bins + k]);
+        if (power > band_power) {
+          band_power = power;
+          band_channel = c;
+        }
       }
+      if (!(band_power > 0.0)) continue;
+      const std::optional<OrderTrackResult> track =
+          cw.tracker->TryTrack(std::span<const double>(s.time).subspan(band_channel * w.n, w.n), fc,
+                               half_band, cw.candidate_warp);
+      if (!track || (tracked && !(track->phase_residual_rad < best_residual))) continue;
+      tracked = true;
+      best_residual = track->phase_residual_rad;
+      std::swap(cw.warp, cw.candidate_warp);
+      carrier = ml.mesh_hz;
+      carrier_shaft = ml.shaft_hz[0];
+      channel = band_channel;
     }
   }
+  // A block whose tones cannot be tracked (none in range, too weak) is averaged at its mean
+  // speed.
   const std::span<const double> reference =
       std::span<const double>(s.time).subspan(channel * w.n, w.n);
-  // A block whose tone cannot be tracked (none in range, too weak) is averaged at its mean speed.
-  const bool tracked =
-      best_power > 0.0 && cw.tracker->Track(reference, carrier, half_band, cw.warp).ok();
   if (mode == -1) {
     // The machine's one decision: track only when it makes the carrier's shaft average more
     // coherent. Another line inside the band (a shaft harmonic, a second mesh) beats with the

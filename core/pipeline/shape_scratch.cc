@@ -69,6 +69,7 @@ Result<std::unique_ptr<ShapeScratch>> ShapeScratch::Create(const ShapeScratchKey
     if (auto tracker = OrderTracker::Create(n, fs); tracker) {
       c.tracker.emplace(std::move(tracker).value());
       c.warp.assign(n, 0.0);
+      c.candidate_warp.assign(n, 0.0);
     }
   }
   s->dominant_time.assign(n, 0.0);

@@ -81,6 +81,7 @@ struct ShapeScratch {
     std::vector<SynchronousAveragePlan> plans;
     std::optional<OrderTracker> tracker;  // key.order_tracker and a block long enough to track
     std::vector<double> warp;             // n: uniform angle -> sample position
+    std::vector<double> candidate_warp;   // n: the carrier candidate being tracked
     // Measured channels: each order's locked power and spread between revolutions, 0..M/2.
     std::vector<double> locked_power;
     std::vector<double> spread_power;

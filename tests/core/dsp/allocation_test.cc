@@ -14,6 +14,7 @@
 #include "core/dsp/envelope_spectrum.h"
 #include "core/dsp/harmonic_indicator.h"
 #include "core/dsp/kurtogram.h"
+#include "core/dsp/order_tracker.h"
 #include "core/dsp/spectrum.h"
 #include "tests/core/counting_operator_new.h"
 #include "tests/core/dsp/test_signals.h"
@@ -86,6 +87,30 @@ TEST(DspAllocations, ProcessStepsAllocateNothingOnceConfigured) {
   EXPECT_EQ(allocations_of([&] { return ComputeHarmonicIndicator(e, ses.bin_hz(), 20.0).ok(); }),
             0);
   EXPECT_EQ(allocations_of([&] { return EnhancementPercent(2.0, 1.0).ok(); }), 0);
+}
+
+// The condition stage tries several tracking carriers in every block and expects some to fail:
+// TryTrack() allocates nothing, tracked or not (Track() builds its failure's message).
+TEST(DspAllocations, TryTrackAllocatesNothingWhetherItTracksOrNot) {
+  std::vector<double> tone(kN);
+  for (std::size_t i = 0; i < kN; ++i) {
+    tone[i] = std::cos(2.0 * 3.141592653589793 * 300.0 * static_cast<double>(i) / kFs);
+  }
+  const std::vector<double> noise = dsp_test::WhiteNoise(kN, 1.0, 3);
+  auto tracker = OrderTracker::Create(kN, kFs).value();
+  std::vector<double> warp(kN);
+  const auto allocations_of = [&](const std::vector<double>& x, double carrier_hz, bool tracks) {
+    EXPECT_EQ(tracker.TryTrack(x, carrier_hz, 6.0, warp).has_value(), tracks);
+    AllocationCounter counter;
+    const bool tracked = tracker.TryTrack(x, carrier_hz, 6.0, warp).has_value();
+    const int count = counter.count();
+    EXPECT_EQ(tracked, tracks);
+    return count;
+  };
+  EXPECT_EQ(allocations_of(tone, 300.0, true), 0);
+  EXPECT_EQ(allocations_of(noise, 300.0, false), 0);    // no carrier
+  EXPECT_EQ(allocations_of(tone, 3999.0, false), 0);    // band outside (0, fs / 2)
+  EXPECT_FALSE(tracker.Track(noise, 300.0, 6.0, warp).ok());  // Track() still says why
 }
 
 }  // namespace

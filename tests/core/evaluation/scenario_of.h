@@ -36,6 +36,14 @@ inline ScenarioOutcome RunExpectingRightGear(const Scenario& s) {
   return out;
 }
 
+// Runs a faulty scenario that must be detected; its gear is the caller's to check.
+inline ScenarioOutcome RunExpectingDetection(const Scenario& s) {
+  ScenarioOutcome out = RunScenario(s);
+  EXPECT_TRUE(out.error.empty()) << out.error;
+  EXPECT_TRUE(out.score.detected);
+  return out;
+}
+
 // How many blocks of `out` are alarmed (suspected or alarm), and how many of those name `shaft`.
 struct NamedShaftBlocks {
   int alarmed = 0;
