@@ -87,7 +87,8 @@ class OrderTracker {
   Result<OrderTrackResult> Track(std::span<const double> signal, double carrier_hz,
                                  double half_band_hz, std::span<double> warp) noexcept;
   // Track() without the message, for a caller that tries several carriers in every block:
-  // nullopt where Track() fails. Allocates nothing on either path.
+  // nullopt where Track() fails. For a signal of the block's length with finite samples (a
+  // validated block), it allocates nothing, tracked or not.
   std::optional<OrderTrackResult> TryTrack(std::span<const double> signal, double carrier_hz,
                                            double half_band_hz, std::span<double> warp) noexcept;
 
