@@ -104,11 +104,25 @@ Result<OrderTracker> OrderTracker::Create(std::size_t block_length, double sampl
 
 Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, double carrier_hz,
                                              double half_band_hz, std::span<double> warp) noexcept {
+  return Run(signal, carrier_hz, half_band_hz, warp, /*messages=*/true);
+}
+
+std::optional<OrderTrackResult> OrderTracker::TryTrack(std::span<const double> signal,
+                                                       double carrier_hz, double half_band_hz,
+                                                       std::span<double> warp) noexcept {
+  Result<OrderTrackResult> r = Run(signal, carrier_hz, half_band_hz, warp, /*messages=*/false);
+  if (!r) return std::nullopt;
+  return r.value();
+}
+
+Result<OrderTrackResult> OrderTracker::Run(std::span<const double> signal, double carrier_hz,
+                                           double half_band_hz, std::span<double> warp,
+                                           bool messages) noexcept {
   if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, n_); !s) {
-    return Fail([&] { return s.error(); });
+    return Fail(messages, [&] { return s.error(); });
   }
   if (warp.size() != n_) {
-    return Fail([&] {
+    return Fail(messages, [&] {
       return std::string(kStage) + ": warp has " + std::to_string(warp.size()) + " values, need " +
              std::to_string(n_);
     });
@@ -116,7 +130,7 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
   const double bin_hz = fs_ / static_cast<double>(n_);
   if (!std::isfinite(carrier_hz) || !std::isfinite(half_band_hz) || half_band_hz <= 0.0 ||
       carrier_hz - half_band_hz <= 0.0 || carrier_hz + half_band_hz >= 0.5 * fs_) {
-    return Fail([&] {
+    return Fail(messages, [&] {
       return std::string(kStage) + ": band " + Hz(carrier_hz) + " +/- " + Hz(half_band_hz) +
              " does not fit in (0, " + Hz(0.5 * fs_) + ")";
     });
@@ -124,14 +138,14 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
   const auto k_lo = static_cast<std::size_t>(std::ceil((carrier_hz - half_band_hz) / bin_hz));
   const auto k_hi = static_cast<std::size_t>(std::floor((carrier_hz + half_band_hz) / bin_hz));
   if (k_hi < k_lo + 2) {
-    return Fail([&] {
+    return Fail(messages, [&] {
       return std::string(kStage) + ": band +/- " + Hz(half_band_hz) + " holds " +
              std::to_string(k_hi + 1 - std::min(k_hi + 1, k_lo)) + " bins of " + Hz(bin_hz) +
              " (need at least 3: a longer block)";
     });
   }
   if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) {
-    return Fail([&] { return s.error(); });
+    return Fail(messages, [&] { return s.error(); });
   }
 
   const auto k_c = static_cast<std::size_t>(std::lround(carrier_hz / bin_hz));
@@ -162,7 +176,7 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
       band_power += std::norm(bins[k]);
     }
     if (!(band_power > 0.0)) {
-      return Fail([&] {
+      return Fail(messages, [&] {
         return std::string(kStage) + ": no power within " + Hz(carrier_hz) + " +/- " +
                Hz(half_band_hz) + " (carrier absent)";
       });
@@ -182,7 +196,7 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
         std::nth_element(floor.begin(), mid, floor.begin() + static_cast<std::ptrdiff_t>(count));
         const double per_bin = band_power / static_cast<double>(width);
         if (!(per_bin > options_.min_carrier_to_floor * *mid)) {
-          return Fail([&] {
+          return Fail(messages, [&] {
             return std::string(kStage) + ": no carrier within " + Hz(carrier_hz) + " +/- " +
                    Hz(half_band_hz) + " (band power per bin " +
                    std::to_string(*mid > 0.0 ? per_bin / *mid : 0.0) +
@@ -237,7 +251,7 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
       }
     }
     if (!(weight_sum > 0.0)) {
-      return Fail([&] {
+      return Fail(messages, [&] {
         return std::string(kStage) + ": the carrier's envelope is zero inside the block";
       });
     }
@@ -265,7 +279,7 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
     result.phase_residual_rad = std::sqrt(residual / weight_sum);
     if (!std::isfinite(result.phase_residual_rad) ||
         result.phase_residual_rad > options_.max_phase_residual_rad) {
-      return Fail([&] {
+      return Fail(messages, [&] {
         return std::string(kStage) + ": the carrier at " + Hz(carrier_hz) +
                " is too noisy to track (phase residual " +
                std::to_string(result.phase_residual_rad) + " rad, limit " +
@@ -279,7 +293,7 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
     }
     for (std::size_t i = 1; i < n_; ++i) {
       if (!(next_[i] > next_[i - 1])) {
-        return Fail([&] {
+        return Fail(messages, [&] {
           return std::string(kStage) + ": the tracked angle of " + Hz(carrier_hz) +
                  " does not increase at sample " + std::to_string(i);
         });
@@ -293,16 +307,6 @@ Result<OrderTrackResult> OrderTracker::Track(std::span<const double> signal, dou
   }
   result.mean_speed_ratio = last / warp[n_ - 1];
   return result;
-}
-
-std::optional<OrderTrackResult> OrderTracker::TryTrack(std::span<const double> signal,
-                                                       double carrier_hz, double half_band_hz,
-                                                       std::span<double> warp) noexcept {
-  quiet_ = true;
-  Result<OrderTrackResult> r = Track(signal, carrier_hz, half_band_hz, warp);
-  quiet_ = false;
-  if (!r) return std::nullopt;
-  return r.value();
 }
 
 }  // namespace gearpath

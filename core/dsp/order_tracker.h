@@ -31,7 +31,8 @@
 // analytic warp with 5 % noise; at constant speed with 30 % noise the warp stays within 0.15
 // samples of the identity (0.1 rad at a 900 Hz harmonic). It does not check that the carrier
 // is the only line in its band: another line there beats with it and is tracked as speed, so
-// the caller should keep a warp only when it makes the synchronous average more coherent.
+// the caller should keep a warp only when it makes the synchronous average more coherent, or
+// compare several carriers' phase residuals (TryTrack).
 //
 // Track() is noexcept and allocation-free (plans and buffers are made by Create()); one tracker
 // must not be run by two threads at once.
@@ -94,10 +95,13 @@ class OrderTracker {
 
  private:
   OrderTracker() = default;
-  // Track()'s failure: the message `build()` makes, or none inside TryTrack().
+  // Track() and TryTrack(): with `messages`, a failure says why (which allocates).
+  Result<OrderTrackResult> Run(std::span<const double> signal, double carrier_hz,
+                               double half_band_hz, std::span<double> warp, bool messages) noexcept;
+  // A failure of Run(): the message `build()` makes, or none.
   template <typename Build>
-  Error Fail(Build build) const noexcept {
-    return quiet_ ? Error{std::string()} : Error{build()};
+  static Error Fail(bool messages, Build build) noexcept {
+    return messages ? Error{build()} : Error{std::string()};
   }
 
   std::size_t n_ = 0;
@@ -108,7 +112,6 @@ class OrderTracker {
   std::vector<double> phase_;
   std::vector<double> weight_;
   std::vector<double> next_;
-  bool quiet_ = false;  // inside TryTrack()
 };
 
 // Reads a warp at a fractional position u (linear between its samples, extrapolated with the

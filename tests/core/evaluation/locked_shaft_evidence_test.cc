@@ -48,8 +48,8 @@ TEST(LockedShaftEvidence, NamesTheFaultyShaftAtThreeHundredRevolutionsPerMinute)
     SCOPED_TRACE(c.scenario.Key());
     const ScenarioOutcome out = c.gear_checked ? testing::RunExpectingRightGear(c.scenario)
                                                : testing::RunExpectingDetection(c.scenario);
-    const testing::NamedShaftBlocks n = testing::CountNamedShaft(out, c.shaft);
-    EXPECT_GE(n.naming, 3) << "blocks naming the " << c.shaft << " shaft";
+    EXPECT_GE(testing::CountNamedShaft(out, c.shaft).naming, 3)
+        << "blocks naming the " << c.shaft << " shaft";
   }
 }
 

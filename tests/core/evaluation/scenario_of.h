@@ -27,20 +27,18 @@ inline Scenario ScenarioOf(PlantFamily family, TrainVariant variant, PlantFaultK
   return s;
 }
 
-// Runs a faulty scenario that must be detected and put on its gear.
-inline ScenarioOutcome RunExpectingRightGear(const Scenario& s) {
-  ScenarioOutcome out = RunScenario(s);
-  EXPECT_TRUE(out.error.empty()) << out.error;
-  EXPECT_TRUE(out.score.detected);
-  EXPECT_TRUE(out.score.right_gear);
-  return out;
-}
-
 // Runs a faulty scenario that must be detected; its gear is the caller's to check.
 inline ScenarioOutcome RunExpectingDetection(const Scenario& s) {
   ScenarioOutcome out = RunScenario(s);
   EXPECT_TRUE(out.error.empty()) << out.error;
   EXPECT_TRUE(out.score.detected);
+  return out;
+}
+
+// Runs a faulty scenario that must be detected and put on its gear.
+inline ScenarioOutcome RunExpectingRightGear(const Scenario& s) {
+  ScenarioOutcome out = RunExpectingDetection(s);
+  EXPECT_TRUE(out.score.right_gear);
   return out;
 }
 
