@@ -257,7 +257,17 @@ Result<OrderTrackResult> OrderTracker::Run(std::span<const double> signal, doubl
     }
     for (int k = degree + 1; k < kBasis; ++k) normal(k, k) = 1.0;
     normal = normal.selfadjointView<Eigen::Lower>();
-    const Vector coef = normal.ldlt().solve(rhs);
+    const auto ldlt = normal.ldlt();
+    Vector coef = ldlt.solve(rhs);
+    if (options_.keep_mean_speed) {
+      // The fit must end where it starts, p(1) = p(-1): the odd Legendre coefficients sum to
+      // zero (P_k(1) = 1, P_k(-1) = (-1)^k). Least squares under that one constraint (a
+      // Lagrange multiplier): c = c0 - N^-1 a (a^T c0) / (a^T N^-1 a).
+      Vector odd = Vector::Zero();
+      for (int k = 1; k < terms; k += 2) odd(k) = 1.0;
+      const Vector n_odd = ldlt.solve(odd);
+      coef -= n_odd * (odd.dot(coef) / odd.dot(n_odd));
+    }
     double residual = 0.0;
     std::array<double, kLegendreLanes> fit{};
     for (std::size_t i0 = 0; i0 < n_; i0 += kLegendreLanes) {
@@ -307,6 +317,22 @@ Result<OrderTrackResult> OrderTracker::Run(std::span<const double> signal, doubl
   }
   result.mean_speed_ratio = last / warp[n_ - 1];
   return result;
+}
+
+void MedianOfWarps(std::span<const double> warps, std::size_t count,
+                   std::span<double> out) noexcept {
+  const std::size_t n = out.size();
+  if (count == 0 || count > kMaxMedianWarps || warps.size() < count * n) return;
+  std::array<double, kMaxMedianWarps> at{};
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < count; ++k) {  // insertion sort of a handful of values
+      const double v = warps[k * n + i];
+      std::size_t j = k;
+      for (; j > 0 && at[j - 1] > v; --j) at[j] = at[j - 1];
+      at[j] = v;
+    }
+    out[i] = count % 2 == 1 ? at[count / 2] : 0.5 * (at[count / 2 - 1] + at[count / 2]);
+  }
 }
 
 }  // namespace gearpath

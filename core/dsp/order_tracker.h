@@ -23,8 +23,12 @@
 // shaft-rate sidebands of a tooth fault (its modulation) stay outside, so the tracker follows
 // the speed, not the fault. A narrow band also under-reads a wide frequency modulation, which
 // the iterations correct: each one leaves a smaller residual modulation for the next.
-// The constant phase is dropped (angle zero stays at sample 0), the linear term is kept (it
-// corrects a mean speed that is slightly off).
+// The constant phase is dropped (angle zero stays at sample 0). By default (keep_mean_speed)
+// the fit is constrained to end where it starts, so the tracked mean speed is the nominal one:
+// a block's speed_hz is its mean speed, and a band narrow enough to keep a fault's sidebands
+// out also cuts off part of a drift's FM sidebands, unevenly where the transfer adds AM, which
+// a free fit reads as a mean speed off by up to 0.2 % (17 samples over an 8192-sample block
+// on the evaluation's lumped plants, docs/diagnosis.md section 9a).
 //
 // Accuracy (tests/core/dsp/order_tracker_test.cc, 1-s blocks at 8 kHz, 300 Hz carrier): a
 // +/- 0.3 % sinusoidal drift (+/- 4 samples of angle) is tracked to within 0.06 samples of the
@@ -54,6 +58,9 @@ struct OrderTrackerOptions {
   int iterations = 3;           // 1..8
   int degree = 6;               // polynomial degree of the phase error, 1..kMaxDegree
   double edge_fraction = 0.05;  // each end of the block left out of the fit, [0, 0.3]
+  // The tracked mean speed is the nominal one (the carrier's mean frequency is carrier_hz);
+  // false lets the fit correct a nominal speed that is slightly off.
+  bool keep_mean_speed = true;
   // Tracking fails (the caller keeps constant speed) when the band's mean power per bin is
   // under this multiple of the median power per bin beside the band (no carrier), ...
   double min_carrier_to_floor = 10.0;
@@ -113,6 +120,18 @@ class OrderTracker {
   std::vector<double> weight_;
   std::vector<double> next_;
 };
+
+// Most warps MedianOfWarps() combines.
+inline constexpr std::size_t kMaxMedianWarps = 16;
+
+// out[i] = the median of `count` warps at sample i (the mean of the middle two for an even
+// count); `warps` holds them one after another, each out.size() long. 1 <= count <=
+// kMaxMedianWarps (otherwise out is left as it is). Why: several carriers of one block each
+// read the speed through their own stretch of the transfer and beside their own foreign lines,
+// so each errs its own way; the median follows the ones that agree. It increases where every
+// warp does. noexcept, no allocation.
+void MedianOfWarps(std::span<const double> warps, std::size_t count,
+                   std::span<double> out) noexcept;
 
 // Reads a warp at a fractional position u (linear between its samples, extrapolated with the
 // end slopes outside [0, n - 1]).

@@ -134,13 +134,12 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
   }
   const double half_band = 0.75 * slowest;
   const double nyquist = 0.5 * ctx.machine.setup.options.sample_rate_hz;
-  // Carrier: each of the first harmonics of every mesh is a candidate, on the channel where its
-  // band is strongest; the one tracked with the smallest phase residual wins. A pump tone or
-  // another shaft's line inside one band beats with that carrier and leaves a residual the
-  // speed does not explain; the strongest band alone was often such a band (its power includes
-  // the foreign line), and its warp moved by several samples from block to block where the
-  // drift was the same in every block (docs/diagnosis.md, section 9a).
-  bool tracked = false;
+  // Carriers: each of the first harmonics of every mesh, on the channel where its band is
+  // strongest. Each reads the speed through its own stretch of the transfer and beside its
+  // own foreign lines (a pump tone, another shaft's harmonic), so each warp errs its own way;
+  // the warp kept is their median, sample by sample (docs/diagnosis.md, section 9a). The one
+  // with the smallest phase residual also serves the machine's tracking decision below.
+  std::size_t count = 0;
   double best_residual = 0.0;
   double carrier = 0.0;
   double carrier_shaft = 0.0;
@@ -163,18 +162,38 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
         }
       }
       if (!(band_power > 0.0)) continue;
+      // Full: the candidate replaces the kept warp with the largest residual if it does better.
+      std::size_t slot = count;
+      if (count == kMaxCarrierWarps) {
+        slot = static_cast<std::size_t>(
+            std::max_element(cw.carrier_residual.begin(), cw.carrier_residual.end()) -
+            cw.carrier_residual.begin());
+      }
+      const std::span<double> into =
+          count < kMaxCarrierWarps
+              ? std::span<double>(cw.carrier_warps).subspan(slot * w.n, w.n)
+              : std::span<double>(cw.candidate_warp);
       const std::optional<OrderTrackResult> track =
           cw.tracker->TryTrack(std::span<const double>(s.time).subspan(band_channel * w.n, w.n), fc,
-                               half_band, cw.candidate_warp);
-      if (!track || (tracked && !(track->phase_residual_rad < best_residual))) continue;
-      tracked = true;
-      best_residual = track->phase_residual_rad;
-      std::swap(cw.warp, cw.candidate_warp);
-      carrier = ml.mesh_hz;
-      carrier_shaft = ml.shaft_hz[0];
-      channel = band_channel;
+                               half_band, into);
+      if (!track) continue;
+      if (count == kMaxCarrierWarps) {
+        if (!(track->phase_residual_rad < cw.carrier_residual[slot])) continue;
+        std::copy(into.begin(), into.end(), cw.carrier_warps.begin() + slot * w.n);
+      } else {
+        ++count;
+      }
+      cw.carrier_residual[slot] = track->phase_residual_rad;
+      if (count == 1 || track->phase_residual_rad < best_residual) {
+        best_residual = track->phase_residual_rad;
+        carrier = ml.mesh_hz;
+        carrier_shaft = ml.shaft_hz[0];
+        channel = band_channel;
+      }
     }
   }
+  const bool tracked = count > 0;
+  if (tracked) MedianOfWarps(cw.carrier_warps, count, cw.warp);
   // A block whose tones cannot be tracked (none in range, too weak) is averaged at its mean
   // speed.
   const std::span<const double> reference =

@@ -70,6 +70,7 @@ Result<std::unique_ptr<ShapeScratch>> ShapeScratch::Create(const ShapeScratchKey
       c.tracker.emplace(std::move(tracker).value());
       c.warp.assign(n, 0.0);
       c.candidate_warp.assign(n, 0.0);
+      c.carrier_warps.assign(kMaxCarrierWarps * n, 0.0);
     }
   }
   s->dominant_time.assign(n, 0.0);

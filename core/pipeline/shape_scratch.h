@@ -13,6 +13,7 @@
 // every machine with that key; the grids per rate group grow to the most any of them needs.
 #pragma once
 
+#include <array>
 #include <complex>
 #include <cstddef>
 #include <memory>
@@ -27,6 +28,11 @@
 #include "core/pipeline/envelope_analysis.h"
 
 namespace gearpath {
+
+// Most carriers whose warps the condition stage keeps for their median (three harmonics of three
+// meshes; a larger train keeps those with the smallest phase residuals).
+inline constexpr std::size_t kMaxCarrierWarps = 9;
+static_assert(kMaxCarrierWarps <= kMaxMedianWarps);
 
 struct MachineContext;
 
@@ -82,6 +88,10 @@ struct ShapeScratch {
     std::optional<OrderTracker> tracker;  // key.order_tracker and a block long enough to track
     std::vector<double> warp;             // n: uniform angle -> sample position
     std::vector<double> candidate_warp;   // n: the carrier candidate being tracked
+    // Up to kMaxCarrierWarps carriers' warps (n each) and their phase residuals: the block's
+    // warp is their median.
+    std::vector<double> carrier_warps;
+    std::array<double, kMaxCarrierWarps> carrier_residual{};
     // Measured channels: each order's locked power and spread between revolutions, 0..M/2.
     std::vector<double> locked_power;
     std::vector<double> spread_power;
