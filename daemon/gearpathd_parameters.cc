@@ -310,11 +310,11 @@ ParamSpec AnalysisSection() {
                       "Upper end of the mesh-frequency speed search, Hz (0: 1.2 x nominal).",
                       0.0, 10000.0, 0.0),
                Boolean("order_tracking",
-                       "Track the speed's variation within each block from a mesh tone (the "
-                       "mesh harmonic whose phase a smooth speed explains best) and average the "
-                       "shafts at the tracked angle (off: constant speed per block; off by "
-                       "default, docs/diagnosis.md).",
-                       false),
+                       "Track the speed's variation within each block from the mesh tones (the "
+                       "median of the first mesh harmonics' warps) and average the shafts at the "
+                       "tracked angle; a machine whose first block gains nothing from it stays "
+                       "at constant speed (off: constant speed per block; docs/diagnosis.md).",
+                       true),
                Boolean("localisation_tracking",
                        "With order_tracking off: track the speed within each block for the "
                        "shaft localisation only (the exclusive residual that names the shaft); "

@@ -59,7 +59,7 @@ struct RunnerOptions {
   double sample_rate_hz = 8000.0;
   std::uint32_t block_length = 8192;
   double target_rms_change = 0.03;  // <= 0: keep the default severities
-  bool order_tracking = false;      // AnalysisOptions::order_tracking of every machine
+  bool order_tracking = true;       // AnalysisOptions::order_tracking of every machine
   bool localisation_tracking = true;  // AnalysisOptions::localisation_tracking
   // Give the machine the identity FRF set (core/frf/identity_frf_set.h: every sensor its own
   // path, the configuration before the hammer test) instead of the plant's model FRFs. A seat

@@ -86,11 +86,12 @@ struct AnalysisOptions {
   // (or 1..100 Hz when there is no nominal).
   double speed_search_lo_hz = 0.0;
   double speed_search_hi_hz = 0.0;
-  // Track the speed's variation within each block from a mesh tone (the harmonic whose phase a
-  // smooth speed explains best, condition_indicator_stage.cc) and average the shafts at the
-  // tracked angle (core/dsp/order_tracker.h); off = constant speed per block.
-  // Off by default: it helped the tuning families and hurt the held-out one (docs/diagnosis.md).
-  bool order_tracking = false;
+  // Track the speed's variation within each block from the mesh tones (the median of the warps
+  // of the first mesh harmonics, condition_indicator_stage.cc) and average the shafts at the
+  // tracked angle (core/dsp/order_tracker.h); off = constant speed per block. A machine whose
+  // first block gains nothing from it is not tracked (MachineState::order_tracking_mode).
+  // On by default since the tracker keeps the block's mean speed (docs/diagnosis.md, 9a).
+  bool order_tracking = true;
   // Track it for the shaft localisation only (when order_tracking is off): the exclusive
   // residual that names the shaft is taken from tracked averages, every scored indicator from
   // constant-speed ones. Drift smears a shaft's high orders into its neighbours' and named the

@@ -37,7 +37,7 @@ struct EvaluateArgs {
   int threads = 0;
   bool list = false;
   bool quiet = false;
-  bool order_tracking = false;
+  bool order_tracking = true;
   bool no_localisation_tracking = false;
   std::string frf = "model";
   std::string dump_blocks_path;
@@ -250,8 +250,8 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--dump-blocks", args->dump_blocks_path,
                   "write one JSON line per processed block (scenario, verdict, score, envelope "
                   "and condition indicators with their z), for studying the indicators");
-  cmd->add_flag("--order-tracking", args->order_tracking,
-                "run the machines with analysis.speed.order_tracking on (default off)");
+  cmd->add_flag("--order-tracking,!--no-order-tracking", args->order_tracking,
+                "run the machines with analysis.speed.order_tracking on (the default) or off");
   cmd->add_option("--frf", args->frf,
                   "FRF set given to the machines: model (the plant's model FRFs) or identity "
                   "(each sensor its own path: monitoring before the hammer test)")

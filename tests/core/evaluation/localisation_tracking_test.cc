@@ -43,8 +43,10 @@ Scenario DriftingModulationOnG1() {
                              ChannelSet::kSeatsAndHousing, true);
 }
 
+// Order tracking of every average off (the default is on): the localisation alone is tracked.
 ScenarioOutcome RunWith(const Scenario& s, bool localisation_tracking) {
   RunnerOptions o;
+  o.order_tracking = false;
   o.localisation_tracking = localisation_tracking;
   ScenarioOutcome out = RunScenario(s, o);
   EXPECT_TRUE(out.error.empty()) << out.error;
@@ -93,32 +95,36 @@ TEST(LocalisationTracking, ChangesNothingAtConstantSpeed) {
 }
 
 // The tracked averages reuse plans and buffers made at configuration: a tracked block of a
-// learned, alarming machine allocates nothing (DESIGN.md: hot paths allocate nothing).
+// learned, alarming machine allocates nothing (DESIGN.md: hot paths allocate nothing), with
+// every average tracked (the default) and with the localisation's only.
 TEST(LocalisationTracking, ATrackedBlockAllocatesNothing) {
-  AnalysisOptions defaults;
-  ASSERT_TRUE(defaults.localisation_tracking);  // the default
-  testing::DriftingMachine m =
-      testing::MakeDriftingMachine(/*drift=*/true, defaults, PlantFaultKind::kTePulse, "G1");
-  PlantSimulator* sim = &m.sim;
-  BlockProcessor* processor = &m.processor;
-  AccelBlock block;
-  BlockResult result;
-  for (int b = 0; b < kBaselineBlocks + 3; ++b) {
-    sim->NextBlock(b >= kBaselineBlocks, block);
-    ASSERT_TRUE(processor->Process(block.view(), result).accepted());
+  for (const bool everything : {true, false}) {
+    AnalysisOptions options;
+    ASSERT_TRUE(options.order_tracking && options.localisation_tracking);  // the defaults
+    options.order_tracking = everything;
+    testing::DriftingMachine m =
+        testing::MakeDriftingMachine(/*drift=*/true, options, PlantFaultKind::kTePulse, "G1");
+    PlantSimulator* sim = &m.sim;
+    BlockProcessor* processor = &m.processor;
+    AccelBlock block;
+    BlockResult result;
+    for (int b = 0; b < kBaselineBlocks + 3; ++b) {
+      sim->NextBlock(b >= kBaselineBlocks, block);
+      ASSERT_TRUE(processor->Process(block.view(), result).accepted());
+    }
+    ASSERT_EQ(processor->ExportLearnedState().order_tracking_mode, 1) << everything;  // tracked
+    sim->NextBlock(true, block);
+    const long probe = g_allocations.load();
+    std::vector<double>* seen = new std::vector<double>(4);  // the counter sees allocations
+    delete seen;
+    ASSERT_GT(g_allocations.load(), probe);
+    const long before = g_allocations.load();
+    const ProcessOutcome o = processor->Process(block.view(), result);
+    const long after = g_allocations.load();
+    EXPECT_TRUE(o.accepted()) << everything;
+    EXPECT_GT(result.score.limit_z, 0.0) << everything;
+    EXPECT_EQ(after - before, 0) << everything;
   }
-  ASSERT_EQ(processor->ExportLearnedState().order_tracking_mode, 1);  // tracked
-  sim->NextBlock(true, block);
-  const long probe = g_allocations.load();
-  std::vector<double>* seen = new std::vector<double>(4);  // the counter sees allocations
-  delete seen;
-  ASSERT_GT(g_allocations.load(), probe);
-  const long before = g_allocations.load();
-  const ProcessOutcome o = processor->Process(block.view(), result);
-  const long after = g_allocations.load();
-  EXPECT_TRUE(o.accepted());
-  EXPECT_GT(result.score.limit_z, 0.0);
-  EXPECT_EQ(after - before, 0);
 }
 
 }  // namespace

@@ -283,7 +283,8 @@ TEST(BlockScratchTest, MachinesOfDifferentShapesTakingTurnsAllocateNothingAfterP
   constexpr std::uint32_t kShortBlock = 4096;
   const MachineSetup setup_a = MakeSetup(table1);
   MachineSetup setup_b = MakeSetup(distinct);
-  setup_b.options.order_tracking = true;  // a different scratch key besides the length
+  setup_b.options.order_tracking = false;  // a different scratch key besides the length
+  setup_b.options.localisation_tracking = false;
   GearboxSimulator sim_a = MakeSimulator(table1, FaultType::kNone, "", 3, true, kBlock);
   GearboxSimulator sim_b = MakeSimulator(distinct, FaultType::kNone, "", 4, true, kShortBlock);
   AccelBlock block_a, block_b;
