@@ -54,6 +54,11 @@
 
 namespace gearpath {
 
+// Raised whenever the warps the tracker makes change (2: the mean speed kept, 2026-11-28), so
+// that a baseline averaged at another revision's angle is not judged against this one's
+// (core/pipeline/learned_state.cc puts it in the fingerprint of a tracking machine).
+inline constexpr int kOrderTrackerRevision = 2;
+
 struct OrderTrackerOptions {
   int iterations = 3;           // 1..8
   int degree = 6;               // polynomial degree of the phase error, 1..kMaxDegree

@@ -3,6 +3,7 @@
 #include <complex>
 #include <string_view>
 
+#include "core/dsp/order_tracker.h"
 #include "core/pipeline/machine_context.h"
 
 namespace gearpath {
@@ -86,6 +87,9 @@ std::uint64_t LearnedStateFingerprint(const MachineContext& m) {
   h.Number(o.speed_search_hi_hz);
   h.Number(o.order_tracking ? 1 : 0);
   h.Number(o.localisation_tracking ? 1 : 0);
+  // The tracker's warps (and with them the tracked averages) changed with its revision; the
+  // warp median of the condition stage came with revision 2.
+  if (o.order_tracking || o.localisation_tracking) h.Number(kOrderTrackerRevision);
   h.Number(static_cast<double>(o.criterion));
   h.Number(o.criterion_over_baseline ? 1 : 0);
   h.Number(m.band_lo);
