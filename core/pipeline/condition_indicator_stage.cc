@@ -145,7 +145,8 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
   double carrier_shaft = 0.0;
   std::size_t channel = 0;
   for (const MeshLines& ml : w.meshes) {
-    for (int h = 1; h <= kCarrierHarmonics; ++h) {
+    // A train of more than three meshes: its first meshes' carriers.
+    for (int h = 1; h <= kCarrierHarmonics && count < kMaxCarrierWarps; ++h) {
       const double fc = h * ml.mesh_hz;
       if (!(fc - half_band > 0.0) || !(fc + half_band < nyquist)) continue;
       const auto lo = static_cast<std::size_t>(std::ceil((fc - half_band) / w.bin_hz));
@@ -162,28 +163,11 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
         }
       }
       if (!(band_power > 0.0)) continue;
-      // Full: the candidate replaces the kept warp with the largest residual if it does better.
-      std::size_t slot = count;
-      if (count == kMaxCarrierWarps) {
-        slot = static_cast<std::size_t>(
-            std::max_element(cw.carrier_residual.begin(), cw.carrier_residual.end()) -
-            cw.carrier_residual.begin());
-      }
-      const std::span<double> into =
-          count < kMaxCarrierWarps
-              ? std::span<double>(cw.carrier_warps).subspan(slot * w.n, w.n)
-              : std::span<double>(cw.candidate_warp);
-      const std::optional<OrderTrackResult> track =
-          cw.tracker->TryTrack(std::span<const double>(s.time).subspan(band_channel * w.n, w.n), fc,
-                               half_band, into);
+      const std::optional<OrderTrackResult> track = cw.tracker->TryTrack(
+          std::span<const double>(s.time).subspan(band_channel * w.n, w.n), fc, half_band,
+          std::span<double>(cw.carrier_warps).subspan(count * w.n, w.n));
       if (!track) continue;
-      if (count == kMaxCarrierWarps) {
-        if (!(track->phase_residual_rad < cw.carrier_residual[slot])) continue;
-        std::copy(into.begin(), into.end(), cw.carrier_warps.begin() + slot * w.n);
-      } else {
-        ++count;
-      }
-      cw.carrier_residual[slot] = track->phase_residual_rad;
+      ++count;
       if (count == 1 || track->phase_residual_rad < best_residual) {
         best_residual = track->phase_residual_rad;
         carrier = ml.mesh_hz;

@@ -69,7 +69,6 @@ Result<std::unique_ptr<ShapeScratch>> ShapeScratch::Create(const ShapeScratchKey
     if (auto tracker = OrderTracker::Create(n, fs); tracker) {
       c.tracker.emplace(std::move(tracker).value());
       c.warp.assign(n, 0.0);
-      c.candidate_warp.assign(n, 0.0);
       c.carrier_warps.assign(kMaxCarrierWarps * n, 0.0);
     }
   }

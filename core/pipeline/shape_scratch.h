@@ -13,7 +13,6 @@
 // every machine with that key; the grids per rate group grow to the most any of them needs.
 #pragma once
 
-#include <array>
 #include <complex>
 #include <cstddef>
 #include <memory>
@@ -30,7 +29,7 @@
 namespace gearpath {
 
 // Most carriers whose warps the condition stage keeps for their median (three harmonics of three
-// meshes; a larger train keeps those with the smallest phase residuals).
+// meshes; a larger train's first three meshes).
 inline constexpr std::size_t kMaxCarrierWarps = 9;
 static_assert(kMaxCarrierWarps <= kMaxMedianWarps);
 
@@ -87,11 +86,8 @@ struct ShapeScratch {
     std::vector<SynchronousAveragePlan> plans;
     std::optional<OrderTracker> tracker;  // key.order_tracker and a block long enough to track
     std::vector<double> warp;             // n: uniform angle -> sample position
-    std::vector<double> candidate_warp;   // n: the carrier candidate being tracked
-    // Up to kMaxCarrierWarps carriers' warps (n each) and their phase residuals: the block's
-    // warp is their median.
+    // Up to kMaxCarrierWarps carriers' warps (n each): the block's warp is their median.
     std::vector<double> carrier_warps;
-    std::array<double, kMaxCarrierWarps> carrier_residual{};
     // Measured channels: each order's locked power and spread between revolutions, 0..M/2.
     std::vector<double> locked_power;
     std::vector<double> spread_power;
