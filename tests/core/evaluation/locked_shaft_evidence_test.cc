@@ -21,33 +21,27 @@ Scenario LowSpeedScenario(PlantFamily family, TrainVariant variant, PlantFaultKi
 
 // Tuning-matrix scenarios whose faulty shaft the average's exclusive energy did not name when
 // this was built (the verdicts named G3/G4 and G2 for the pulse on G1, G2/G3 for the combined
-// fault on G1, G1 for the wear on G3). Each must now name its shaft in most of its evaluation
-// blocks and, where the shaft holds one gear, the true gear. The wear on G3 sits on the shaft
-// of two meshes: G3 was named until the tracking carrier became the mesh harmonic with the
-// smallest phase residual (2026-11-28); since then its shaft is still named in all four alarmed
-// blocks, but the mesh evidence leaves both meshes as candidates (G2, G3, G4) in three of
-// them, short of right gear's majority.
+// fault on G1, G1 for the wear on G3). Each must now name the true gear in most of its
+// evaluation blocks, and every alarmed block its shaft.
 TEST(LockedShaftEvidence, NamesTheFaultyShaftAtThreeHundredRevolutionsPerMinute) {
   struct Case {
     Scenario scenario;
     const char* shaft;
-    bool gear_checked;
   };
   const Case cases[] = {
       {LowSpeedScenario(PlantFamily::kLumpedPerturbed, TrainVariant::kTable1,
                         PlantFaultKind::kTePulse, "G1", 0.10),
-       "input", true},
+       "input"},
       {LowSpeedScenario(PlantFamily::kLumpedPerturbed, TrainVariant::kDistinct,
                         PlantFaultKind::kCombined, "G1", 0.02),
-       "input", true},
+       "input"},
       {LowSpeedScenario(PlantFamily::kLumpedTorsional, TrainVariant::kTable1,
                         PlantFaultKind::kWearDip, "G3", 0.02),
-       "intermediate", false},
+       "intermediate"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.scenario.Key());
-    const ScenarioOutcome out = c.gear_checked ? testing::RunExpectingRightGear(c.scenario)
-                                               : testing::RunExpectingDetection(c.scenario);
+    const ScenarioOutcome out = testing::RunExpectingRightGear(c.scenario);
     EXPECT_GE(testing::CountNamedShaft(out, c.shaft).naming, 3)
         << "blocks naming the " << c.shaft << " shaft";
   }
