@@ -32,8 +32,8 @@ class ConditionIndicatorStage final : public PipelineStage {
   // Parallel and orthogonal energies of every signature slot from the kept lines; with
   // `tracked`, only the measured slots', into their tracked entries.
   void Signatures(StageContext& ctx, bool tracked) noexcept;
-  // Tracks this block's speed variation from a mesh tone into the scratch's warp (of the first
-  // mesh harmonics, the one whose phase residual is smallest);
+  // Tracks this block's speed variation into the scratch's warp: the per-sample median of the
+  // warps of the first mesh harmonics that track;
   // false (and constant speed) when tracking is off, the block too short or the tone too weak.
   // The machine's first block with a speed decides, once, whether it is tracked at all
   // (MachineState::order_tracking_mode): a baseline must be averaged like the blocks it judges.
