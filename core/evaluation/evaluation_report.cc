@@ -67,8 +67,10 @@ void FormatRow(std::string& out, const AggregateRow& r) {
   const std::string flips = r.scored > 0 ? fmt::format("{:.2f}", r.mean_flips()) : "-";
   const std::string learning = r.blocks > 0 ? Percent(r.learning_rate()) : "-";
   const std::string reversals = r.scored > 0 ? fmt::format("{}", r.max_reversals) : "-";
-  out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7} {:>5}", r.label,
-                     r.faulty, r.healthy, detect, right, fa, first, flips, learning, reversals);
+  const std::string regear = r.faulty > 0 ? fmt::format("{:.2f}", r.mean_gear_changes()) : "-";
+  out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7} {:>5} {:>6}",
+                     r.label, r.faulty, r.healthy, detect, right, fa, first, flips, learning,
+                     reversals, regear);
   if (r.errors > 0) out += fmt::format("  ({} errors)", r.errors);
   out += "\n";
 }
@@ -88,6 +90,8 @@ nlohmann::json RowJson(const AggregateRow& r) {
           {"mean_flips", r.mean_flips()},
           {"reversals", r.reversals_sum},
           {"max_reversals_per_scenario", r.max_reversals},
+          {"gear_changes", r.gear_changes_sum},
+          {"mean_gear_changes_per_faulty_scenario", r.mean_gear_changes()},
           {"learning_blocks", r.learning_blocks},
           {"evaluation_blocks", r.blocks},
           {"errors", r.errors}};
@@ -109,6 +113,7 @@ void AggregateRow::Add(const ScenarioOutcome& o) {
   learning_blocks += s.learning_blocks;
   if (s.faulty) {
     ++faulty;
+    gear_changes_sum += s.gear_changes;
     detected += s.detected ? 1 : 0;
     right_gear += s.right_gear ? 1 : 0;
     if (s.first_alarm_block > 0) {
@@ -158,9 +163,9 @@ std::string FormatSummary(const std::vector<PartitionSummary>& summary) {
                        p.name == "held_out" ? "HELD-OUT" : "tuning", families,
                        p.overall.scored + p.overall.errors, p.overall.faulty, p.overall.healthy,
                        p.overall.errors > 0 ? fmt::format(", {} errors", p.overall.errors) : "");
-    out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7} {:>5}\n",
+    out += fmt::format("  {:<22} {:>6} {:>6} {:>8} {:>8} {:>8} {:>6} {:>6} {:>7} {:>5} {:>6}\n",
                        "group", "faulty", "health", "detect", "right", "FA/blk", "first", "flips",
-                       "learn", "rev");
+                       "learn", "rev", "regear");
     FormatRow(out, p.overall);
     for (const AggregateTable& t : p.tables) {
       out += fmt::format("-- by {}\n", t.dimension);
@@ -240,6 +245,7 @@ std::string ToJson(std::string_view matrix, const std::vector<ScenarioOutcome>& 
                     {"first_alarm_block", sc.first_alarm_block},
                     {"flips", sc.flips},
                     {"reversals", sc.reversals},
+                    {"gear_changes", sc.gear_changes},
                     {"false_alarm_blocks", sc.false_alarm_blocks}};
     }
     scenarios.push_back(std::move(j));

@@ -13,7 +13,9 @@
 //   flips = mean number of state changes within the evaluation blocks, over all scenarios,
 //   learning = evaluation blocks still learning / all evaluation blocks (should be 0),
 //   rev = the most reversals (changes to a less severe state) of any one scenario: the
-//                diagnosis issue's "no verdict flips more than once in 5 blocks" bar.
+//                diagnosis issue's "no verdict flips more than once in 5 blocks" bar,
+//   regear = mean number of changes of the named gears (gear and candidates) from one
+//                alarmed evaluation block to the next alarmed one, over faulty scenarios.
 // Scenarios that failed to run are counted as errors and excluded from every rate.
 // JSON schema: docs/evaluation.md.
 #pragma once
@@ -39,6 +41,7 @@ struct AggregateRow {
   int flips_sum = 0;
   int reversals_sum = 0;
   int max_reversals = 0;  // the most reversals of any one scenario
+  int gear_changes_sum = 0;  // faulty scenarios only
   int learning_blocks = 0;
   int blocks = 0;
   int scored = 0;
@@ -58,6 +61,9 @@ struct AggregateRow {
     return first_alarm_count > 0 ? static_cast<double>(first_alarm_sum) / first_alarm_count : 0.0;
   }
   double mean_flips() const { return scored > 0 ? static_cast<double>(flips_sum) / scored : 0.0; }
+  double mean_gear_changes() const {
+    return faulty > 0 ? static_cast<double>(gear_changes_sum) / faulty : 0.0;
+  }
   double learning_rate() const {
     return blocks > 0 ? static_cast<double>(learning_blocks) / blocks : 0.0;
   }

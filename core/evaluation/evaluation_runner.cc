@@ -151,12 +151,18 @@ ScenarioScore ScoreVerdicts(std::span<const BlockVerdictRecord> evaluation,
   ScenarioScore s;
   s.faulty = !true_gear.empty();
   s.blocks = static_cast<int>(evaluation.size());
+  const BlockVerdictRecord* last_alarmed = nullptr;
   for (std::size_t i = 0; i < evaluation.size(); ++i) {
     const BlockVerdictRecord& v = evaluation[i];
     if (v.state == FaultState::kLearning) ++s.learning_blocks;
     if (Alarmed(v.state)) {
       ++s.alarmed_blocks;
       if (s.first_alarm_block == 0) s.first_alarm_block = static_cast<int>(i) + 1;
+      if (last_alarmed != nullptr && (v.gear != last_alarmed->gear ||
+                                      v.candidates != last_alarmed->candidates)) {
+        ++s.gear_changes;
+      }
+      last_alarmed = &v;
     }
     if (s.faulty && VerdictNamesGear(v, true_gear, layout)) ++s.right_gear_blocks;
     if (i > 0 && v.state != evaluation[i - 1].state) ++s.flips;

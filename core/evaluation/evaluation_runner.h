@@ -90,6 +90,9 @@ struct ScenarioScore {
   int first_alarm_block = 0;  // 1-based, 0 = never
   int flips = 0;
   int reversals = 0;
+  // Changes of the gears named (gear and candidates) from one alarmed block to the next
+  // alarmed one: a verdict that keeps its state but moves its gear flickers all the same.
+  int gear_changes = 0;
   int false_alarm_blocks = 0;  // healthy scenarios only
 };
 

@@ -65,6 +65,7 @@ TEST(Scoring, MajorityFirstAlarmAndFlips) {
   EXPECT_EQ(s.first_alarm_block, 2);
   EXPECT_EQ(s.flips, 3);  // no->sus, sus->alarm, alarm->no
   EXPECT_EQ(s.reversals, 1);  // alarm->no; the onset's two steps up are not reversals
+  EXPECT_EQ(s.gear_changes, 1);  // G1 -> G2 between the alarmed blocks
   EXPECT_EQ(s.false_alarm_blocks, 0);
 
   const std::vector<BlockVerdictRecord> g34 = {V(kAl, "G3", {"G3", "G4"}),
@@ -76,6 +77,13 @@ TEST(Scoring, MajorityFirstAlarmAndFlips) {
   EXPECT_EQ(r.first_alarm_block, 1);
   EXPECT_EQ(r.flips, 1);
   EXPECT_EQ(r.reversals, 1);
+  EXPECT_EQ(r.gear_changes, 0);
+
+  // A change of the candidate set counts, across a quiet block too; the quiet block does not.
+  const std::vector<BlockVerdictRecord> widening = {
+      V(kAl, "G2", {"G2"}), V(kNo), V(kAl, "G2", {"G2", "G3", "G4"}), V(kAl, "G2", {"G2"}),
+      V(kAl, "G2", {"G2"})};
+  EXPECT_EQ(ScoreVerdicts(widening, "G2", t1).gear_changes, 2);
 
   const std::vector<BlockVerdictRecord> two = {V(kAl, "G1"), V(kNo), V(kAl, "G1"), V(kNo), V(kNo)};
   EXPECT_FALSE(ScoreVerdicts(two, "G1", t1).detected);
