@@ -1,3 +1,4 @@
+#include "core/diagnosis/gear_condition_indicators.h"
 #include "core/pipeline/block_processor.h"
 
 #include <fmt/format.h>
@@ -120,6 +121,7 @@ Status InitialiseState(const MachineContext& m, MachineState& st) {
   st.residual_variance_healthy.mean.assign(m.condition_slots.size(), 0.0);
   st.criterion_healthy.mean.assign(m.paths, 0.0);
   st.group_excess_sum.assign(m.rate_groups.size(), 0.0);
+  st.mesh_evidence_sum.assign(m.rate_groups.size() * kMaxMeshesPerShaft, 0.0);
   return Status::Ok();
 }
 
@@ -265,6 +267,7 @@ void BlockProcessor::Impl::ResetLearning() noexcept {
   state.residual_variance_healthy.Reset();
   state.criterion_healthy.Reset();
   std::fill(state.group_excess_sum.begin(), state.group_excess_sum.end(), 0.0);
+  std::fill(state.mesh_evidence_sum.begin(), state.mesh_evidence_sum.end(), 0.0);
   state.order_tracking_mode = -1;
 }
 
@@ -492,6 +495,7 @@ LearnedState BlockProcessor::ExportLearnedState() const {
   s.criterion_blocks = st.criterion_healthy.blocks;
   s.alarm = st.alarm->State();
   s.group_excess_sum = st.group_excess_sum;
+  s.mesh_evidence_sum = st.mesh_evidence_sum;
   s.order_tracking_mode = st.order_tracking_mode;
   return s;
 }
@@ -516,6 +520,11 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
                                s.criterion_healthy.size()),
                     size_check("group_excess_sum", now.group_excess_sum.size(),
                                s.group_excess_sum.size()),
+                    // Empty in states saved before the mesh evidence accumulated.
+                    s.mesh_evidence_sum.empty()
+                        ? Status::Ok()
+                        : size_check("mesh_evidence_sum", now.mesh_evidence_sum.size(),
+                                     s.mesh_evidence_sum.size()),
                     size_check("indicator_baseline", now.indicator_baseline->indicators(),
                                static_cast<std::size_t>(s.indicator_baseline.indicators))}) {
     if (!st) return st;
@@ -541,7 +550,8 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
     if (!a) return Error{a.error()};
     alarm.emplace(std::move(a.value()));
   }
-  for (const auto* v : {&s.residual_variance_healthy, &s.criterion_healthy, &s.group_excess_sum}) {
+  for (const auto* v : {&s.residual_variance_healthy, &s.criterion_healthy, &s.group_excess_sum,
+                        &s.mesh_evidence_sum}) {
     for (double x : *v) {
       if (!std::isfinite(x)) return Error{"a healthy level or evidence sum is not finite"};
     }
@@ -568,6 +578,11 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
   st.criterion_healthy.mean = s.criterion_healthy;
   st.criterion_healthy.blocks = s.criterion_blocks;
   st.group_excess_sum = s.group_excess_sum;
+  if (s.mesh_evidence_sum.empty()) {
+    std::fill(st.mesh_evidence_sum.begin(), st.mesh_evidence_sum.end(), 0.0);
+  } else {
+    st.mesh_evidence_sum = s.mesh_evidence_sum;
+  }
   st.order_tracking_mode = s.order_tracking_mode;
   return Status::Ok();
 }

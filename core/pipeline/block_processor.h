@@ -265,7 +265,8 @@ struct BlockLocalisation {
   std::array<double, kMaxGroups> shaft_evidence{};
   std::array<double, kMaxGroups> shaft_evidence_accumulated{};
   int mesh_count = 0;  // meshes of the chosen group
-  // Per mesh of the chosen group (its order): the transfer-signature evidence (fractions).
+  // Per mesh of the chosen group (its order): the transfer-signature evidence accumulated over
+  // the fault's blocks, as fractions (the mesh decision's input).
   std::array<double, kMaxMeshes> mesh_evidence{};
   // Per rate group and mesh of that group: the transfer signatures' rise over healthy
   // (units^2): measured channels parallel, orthogonal; identified forces parallel, orthogonal.

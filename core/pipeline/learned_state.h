@@ -33,6 +33,9 @@ struct LearnedState {
   int criterion_blocks = 0;
   AlarmModelState alarm;
   std::vector<double> group_excess_sum;           // per rate group (localisation evidence)
+  // Per rate group x kMaxMeshesPerShaft (MachineState::mesh_evidence_sum); empty in states
+  // saved before it existed.
+  std::vector<double> mesh_evidence_sum;
   int order_tracking_mode = -1;                   // MachineState::order_tracking_mode
 };
 

@@ -93,6 +93,7 @@ json ToJson(const LearnedState& s) {
                 {"blocks_in_state", a.blocks_in_state},
                 {"votes", a.votes}};
   j["group_excess_sum"] = s.group_excess_sum;
+  j["mesh_evidence_sum"] = s.mesh_evidence_sum;
   j["order_tracking_mode"] = s.order_tracking_mode;
   return j;
 }
@@ -152,6 +153,10 @@ Result<LearnedState> LearnedStateFromJson(const json& j) {
     s.alarm.blocks_in_state = Int(a, "blocks_in_state");
     s.alarm.votes = Ints(a, "votes");
     s.group_excess_sum = j.at("group_excess_sum").get<std::vector<double>>();
+    // Absent in states written before the mesh evidence accumulated: it starts from zero.
+    if (j.contains("mesh_evidence_sum")) {
+      s.mesh_evidence_sum = j.at("mesh_evidence_sum").get<std::vector<double>>();
+    }
     // Absent in states written before order tracking existed: those machines averaged at
     // constant speed.
     s.order_tracking_mode = j.contains("order_tracking_mode") ? Int(j, "order_tracking_mode") : 0;

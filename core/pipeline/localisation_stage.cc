@@ -29,9 +29,11 @@ namespace {
 // Evidence for m = the other meshes' orthogonal rise. Near m's own harmonics the fault's lines are
 // parallel to m's tone, but so are m's healthy eccentricity sidebands, whose block-to-block
 // variation buries the fault's parallel rise: the parallel rise decides only when nothing rose
-// orthogonally anywhere. The identified forces' signatures are published but not used: on the
-// evaluation families they named the mesh less often than the measured channels alone
-// (docs/diagnosis.md section 11).
+// orthogonally anywhere. Each rise is its robust z (clamped at 0), in units of that
+// neighbourhood's own healthy spread: in energy units the neighbourhood the housing transmits
+// most loudly outvoted the others. The identified forces' signatures are published but not
+// used: on the evaluation families they named the mesh less often than the measured channels
+// alone (docs/diagnosis.md section 11).
 std::array<double, kMaxMeshesPerShaft> MeshEvidence(const MachineContext& m,
                                                     const BlockWorkspace& w,
                                                     std::size_t g) noexcept {
@@ -42,8 +44,8 @@ std::array<double, kMaxMeshesPerShaft> MeshEvidence(const MachineContext& m,
   double orth_total = 0.0;
   for (const SignatureSlot& ss : m.signature_slots) {
     if (ss.group != g || ss.forces) continue;
-    par[ss.mesh] = w.excess[ss.tracked_offset];
-    orth[ss.mesh] = w.excess[ss.tracked_offset + 1];
+    par[ss.mesh] = std::max(0.0, w.z[ss.tracked_offset]);
+    orth[ss.mesh] = std::max(0.0, w.z[ss.tracked_offset + 1]);
     orth_total += orth[ss.mesh];
   }
   double total = 0.0;
@@ -138,10 +140,26 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
     e[ss.forces ? 3 : 1] = w.excess[at + 1];
   }
 
-  // 2. The mesh, when the group's gears sit on several: this block's transfer-signature
-  // evidence (accumulating it over blocks, like the shaft's, named the right gear less often
-  // on the evaluation families: 39 % against 47 %).
-  const std::array<double, kMaxMeshesPerShaft> evidence = MeshEvidence(m, w, g);
+  // 2. The mesh, when the group's gears sit on several: the transfer-signature evidence
+  // accumulated like the shaft's (every group's, so that a later block naming another group
+  // finds its sums), as fractions of their total.
+  for (std::size_t i = 0; i < groups; ++i) {
+    if (m.rate_groups[i].meshes.size() < 2) continue;
+    const std::array<double, kMaxMeshesPerShaft> block = MeshEvidence(m, w, i);
+    double* sum = st.mesh_evidence_sum.data() + i * kMaxMeshesPerShaft;
+    for (std::size_t k = 0; k < kMaxMeshesPerShaft; ++k) {
+      sum[k] = counts ? sum[k] + block[k] : 0.5 * sum[k];
+    }
+  }
+  std::array<double, kMaxMeshesPerShaft> evidence{};
+  {
+    const double* sum = st.mesh_evidence_sum.data() + g * kMaxMeshesPerShaft;
+    double total = 0.0;
+    for (std::size_t k = 0; k < rg.meshes.size(); ++k) total += sum[k];
+    if (total > 0.0) {
+      for (std::size_t k = 0; k < rg.meshes.size(); ++k) evidence[k] = sum[k] / total;
+    }
+  }
   record.mesh_count = static_cast<int>(rg.meshes.size());
   for (std::size_t i = 0; i < rg.meshes.size() && i < BlockLocalisation::kMaxMeshes; ++i) {
     record.mesh_evidence[i] = evidence[i];

@@ -10,10 +10,11 @@
 //     (core/diagnosis/mesh_signature.h). A tooth fault on mesh m adds sideband energy that
 //     travels like m's own tone (parallel to it across the sensors) near m's harmonics and,
 //     when broadband, energy that does not travel like the other meshes' tones near theirs.
-//     Evidence for m = its parallel excess + the others' orthogonal excess, as a fraction of
-//     the total, averaged over the measured channels and the identified forces. The mesh wins
-//     when it leads the next by AnalysisOptions::mesh_separation; otherwise every close mesh
-//     stays a candidate. (Tried first: each mesh's sideband energy, and the end bearings'
+//     Evidence for m = the other meshes' orthogonal rise on the measured channels, each in
+//     robust z over its own healthy spread (m's parallel rise when nothing rose orthogonally),
+//     as a fraction of the total, accumulated over the fault's blocks like the shaft evidence.
+//     The mesh wins when it leads the next by AnalysisOptions::mesh_separation; otherwise
+//     every close mesh stays a candidate. (Tried first: each mesh's sideband energy, and the end bearings'
 //     force excess - a mesh force loads its own two shafts' bearings. On the evaluation
 //     families both were right about half the time: the lumped model couples the meshes
 //     through the shared shaft's rotation, and an additive pulse's comb spreads over every
@@ -21,9 +22,9 @@
 //  Both read the measured channels' entries from order-tracked averages when the machine is
 //  tracked for localisation (AnalysisOptions::localisation_tracking; MachineContext::
 //  tracked_offset): speed drift within a block smears constant-speed averages across groups.
-//  The shaft evidence accumulates over the blocks at or above the clear level (the fault's
-//  blocks) and decays by half on each quiet block: one block's noisy evidence does not name
-//  the shaft (MachineState keeps the sums).
+//  The shaft and mesh evidence accumulate over the blocks at or above the clear level (the
+//  fault's blocks) and decay by half on each quiet block: one block's noisy evidence does not
+//  name the shaft or the mesh (MachineState keeps the sums).
 //  3. The GEARS: the group's gears on the chosen mesh(es). Two gears with the same rate on the
 //     same mesh (seed Table 1's G3 and G4) remain joint candidates: nothing separates them.
 #pragma once

@@ -49,6 +49,8 @@ struct MachineState {
   // Shaft evidence accumulated over recent exceeding blocks, per rate group
   // (localisation_stage.h).
   std::vector<double> group_excess_sum;
+  // Mesh evidence (fractions) accumulated the same way, per rate group x kMaxMeshesPerShaft.
+  std::vector<double> mesh_evidence_sum;
   // Order tracking for this machine (AnalysisOptions::order_tracking): -1 undecided, 0 constant
   // speed, 1 tracked. Decided once, on the first block with a speed, and kept, so the
   // baseline and every later block are averaged the same way (condition_indicator_stage.h).

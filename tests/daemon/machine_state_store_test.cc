@@ -52,6 +52,7 @@ class MachineStateStoreTest : public ::testing::Test {
     s.alarm.exceed_bits = 0b10110;
     s.alarm.votes = {2, 2, 1};
     s.group_excess_sum = {3.5, 0.0};
+    s.mesh_evidence_sum = {0.0, 0.0, 0.0, 0.0, 1.25, 0.75, 0.0, 0.0};
     return m;
   }
 
@@ -76,6 +77,8 @@ TEST_F(MachineStateStoreTest, ASavedMachineReadsBackBitForBit) {
   EXPECT_EQ(m.learned.alarm.state, FaultState::kAlarm);
   EXPECT_EQ(m.learned.alarm.exceed_bits, 0b10110u);
   EXPECT_EQ(m.learned.alarm.votes, (std::vector<int>{2, 2, 1}));
+  EXPECT_EQ(m.learned.group_excess_sum, saved.learned.group_excess_sum);
+  EXPECT_EQ(m.learned.mesh_evidence_sum, saved.learned.mesh_evidence_sum);
   // No temporary file is left behind.
   int files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir_)) ++files;

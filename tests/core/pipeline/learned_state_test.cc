@@ -117,6 +117,50 @@ TEST(LearnedStateTest, AStateIsRefusedByAMachineThatMeasuresSomethingElse) {
   }
 }
 
+// The mesh evidence accumulates over the fault's blocks (docs/diagnosis.md section 11), so a
+// machine resumed mid-alarm must carry its sums to name the gear as the learner goes on naming
+// it. A fracture on G2 sits on the shaft of two meshes, where the sums decide.
+TEST(LearnedStateTest, AResumedMachineKeepsItsMeshEvidence) {
+  const Machine& m = Table1Machine();
+  std::uint64_t seq = 1;
+  BlockProcessor learned = LearnedProcessor(m, seq);
+  GearboxSimulator broken = MakeSimulator(m, FaultType::kToothFracture, "G2", 23);
+  const BlockResult before = RunBlocks(learned, broken, 4, seq);
+  ASSERT_EQ(before.verdict.state, FaultState::kAlarm) << before.verdict.reason.view();
+  const LearnedState state = learned.ExportLearnedState();
+  double accumulated = 0.0;
+  for (double x : state.mesh_evidence_sum) accumulated += x;
+  EXPECT_GT(accumulated, 0.0) << "no mesh evidence accumulated over the alarmed blocks";
+
+  auto resumed = BlockProcessor::Create(MakeSetup(m));
+  ASSERT_TRUE(resumed.ok()) << resumed.error();
+  ASSERT_TRUE(resumed->ImportLearnedState(ThroughJson(state)).ok());
+  ExpectSameJudgement(learned, resumed.value(), broken, 3, seq, /*first_scored_alone=*/true);
+}
+
+// A state saved before the mesh evidence accumulated has no sums: it reads, and the machine
+// starts them from zero. Sums of another machine's size are refused by name.
+TEST(LearnedStateTest, AStateWithoutMeshEvidenceSumsStartsThemFromZero) {
+  const Machine& m = Table1Machine();
+  std::uint64_t seq = 1;
+  BlockProcessor learned = LearnedProcessor(m, seq);
+  nlohmann::json old = ToJson(learned.ExportLearnedState());
+  old.erase("mesh_evidence_sum");
+  auto read = LearnedStateFromJson(old);
+  ASSERT_TRUE(read.ok()) << read.error();
+  EXPECT_TRUE(read->mesh_evidence_sum.empty());
+  auto p = BlockProcessor::Create(MakeSetup(m));
+  ASSERT_TRUE(p.ok());
+  ASSERT_TRUE(p->ImportLearnedState(read.value()).ok());
+  for (double x : p->ExportLearnedState().mesh_evidence_sum) EXPECT_EQ(x, 0.0);
+
+  LearnedState short_sums = learned.ExportLearnedState();
+  short_sums.mesh_evidence_sum.pop_back();
+  const Status st = p->ImportLearnedState(short_sums);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().find("mesh_evidence_sum"), std::string::npos) << st.error();
+}
+
 TEST(LearnedStateTest, InconsistentPartsAreRefusedAndNamed) {
   const Machine& m = Table1Machine();
   std::uint64_t seq = 1;
