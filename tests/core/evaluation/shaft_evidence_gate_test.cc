@@ -18,8 +18,9 @@ namespace {
 // must now name its shaft in every alarmed block and, where the shaft holds one gear, the true
 // gear in most of its evaluation blocks. The pulse on G2 sits on the shaft of two meshes: G2
 // was named until the tracking carrier became the mesh harmonic with the smallest phase
-// residual (2026-11-28); since then the mesh evidence names G3 in its first two alarmed blocks
-// and G2 in the last two, short of right gear's majority.
+// residual (2026-11-28); since then its first alarmed blocks lean to G3 and its last to G2
+// (with the mesh evidence accumulated over the blocks: both meshes, G3, both, G2), short of
+// right gear's majority.
 TEST(ShaftEvidenceGate, NoiseLevelRisesDoNotNameTheShaft) {
   struct Case {
     Scenario scenario;
