@@ -1,4 +1,3 @@
-#include "core/diagnosis/gear_condition_indicators.h"
 #include "core/pipeline/block_processor.h"
 
 #include <fmt/format.h>
@@ -12,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/diagnosis/gear_condition_indicators.h"
 #include "core/pipeline/alarm_stage.h"
 #include "core/pipeline/block_scratch.h"
 #include "core/pipeline/block_workspace.h"
