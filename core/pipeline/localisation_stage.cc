@@ -64,6 +64,12 @@ std::array<double, kMaxMeshesPerShaft> MeshEvidence(const MachineContext& m,
   return evidence;
 }
 
+// Evidence accumulated over a fault's blocks: added on a block at or above the clear level,
+// halved on a quiet one, so one block's noisy evidence cannot decide alone.
+void Accumulate(double& sum, double block_evidence, bool counts) noexcept {
+  sum = counts ? sum + block_evidence : 0.5 * sum;
+}
+
 int GearMesh(const MachineContext& m, int gear) noexcept {
   return m.topology.gear_mesh[static_cast<std::size_t>(gear)];
 }
@@ -107,7 +113,7 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
   double total_excess = 0.0;
   for (std::size_t g = 0; g < groups; ++g) {
     double& sum = st.group_excess_sum[g];
-    sum = counts ? sum + group_excess_[g] : 0.5 * sum;
+    Accumulate(sum, group_excess_[g], counts);
     total_excess += sum;
   }
 
@@ -145,11 +151,11 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
   // finds its sums), as fractions of their total.
   for (std::size_t i = 0; i < groups; ++i) {
     if (m.rate_groups[i].meshes.size() < 2) continue;
-    const std::array<double, kMaxMeshesPerShaft> block = MeshEvidence(m, w, i);
+    // A quiet block only halves the sums: its evidence is not needed.
+    const std::array<double, kMaxMeshesPerShaft> block =
+        counts ? MeshEvidence(m, w, i) : std::array<double, kMaxMeshesPerShaft>{};
     double* sum = st.mesh_evidence_sum.data() + i * kMaxMeshesPerShaft;
-    for (std::size_t k = 0; k < kMaxMeshesPerShaft; ++k) {
-      sum[k] = counts ? sum[k] + block[k] : 0.5 * sum[k];
-    }
+    for (std::size_t k = 0; k < kMaxMeshesPerShaft; ++k) Accumulate(sum[k], block[k], counts);
   }
   std::array<double, kMaxMeshesPerShaft> evidence{};
   {

@@ -14,11 +14,11 @@
 //     robust z over its own healthy spread (m's parallel rise when nothing rose orthogonally),
 //     as a fraction of the total, accumulated over the fault's blocks like the shaft evidence.
 //     The mesh wins when it leads the next by AnalysisOptions::mesh_separation; otherwise
-//     every close mesh stays a candidate. (Tried first: each mesh's sideband energy, and the end bearings'
-//     force excess - a mesh force loads its own two shafts' bearings. On the evaluation
-//     families both were right about half the time: the lumped model couples the meshes
-//     through the shared shaft's rotation, and an additive pulse's comb spreads over every
-//     mesh's neighbourhood.)
+//     every close mesh stays a candidate. (Tried first: each mesh's sideband energy, and the
+//     end bearings' force excess - a mesh force loads its own two shafts' bearings. On the
+//     evaluation families both were right about half the time: the lumped model couples the
+//     meshes through the shared shaft's rotation, and an additive pulse's comb spreads over
+//     every mesh's neighbourhood.)
 //  Both read the measured channels' entries from order-tracked averages when the machine is
 //  tracked for localisation (AnalysisOptions::localisation_tracking; MachineContext::
 //  tracked_offset): speed drift within a block smears constant-speed averages across groups.
