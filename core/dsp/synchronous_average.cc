@@ -165,6 +165,7 @@ Result<SynchronousAverage> SynchronousAverage::Create(std::size_t block_length,
                                           static_cast<double>(max_points_per_revolution));
   }
   stage.mean_scratch_.assign(max_points_per_revolution / 2 + 1, {});
+  stage.average_scratch_.assign(max_points_per_revolution, 0.0);
   for (std::size_t m = kMinPoints; m <= max_points_per_revolution; m *= 2) {
     Result<FftPlan> forward = FftPlan::Create(FftKind::kRealToComplex, m);
     if (!forward) return Error{what + forward.error()};
@@ -269,9 +270,9 @@ Status SynchronousAverage::Process(std::span<const double> signal, double shaft_
   return Process(signal, plan_, out);
 }
 
-Status SynchronousAverage::Process(std::span<const double> signal,
-                                   const SynchronousAveragePlan& plan,
-                                   SynchronousAverageRecord& out) noexcept {
+Status SynchronousAverage::CheckProcess(std::span<const double> signal,
+                                        const SynchronousAveragePlan& plan,
+                                        const SynchronousAverageRecord& out) const noexcept {
   if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
   if (plan.points_per_revolution == 0) {
     return Error{std::string(kStage) + ": the plan holds no grid (Plan() failed or never ran)"};
@@ -282,21 +283,50 @@ Status SynchronousAverage::Process(std::span<const double> signal,
                  std::to_string(out.tsa_storage.size()) + " points, need " +
                  std::to_string(max_points_) + ")"};
   }
-  if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) return s;
+  return dsp_detail::CheckFinite(kStage, "signal", signal);
+}
 
+Status SynchronousAverage::CheckSpread(std::span<const double> signal,
+                                       const SynchronousAveragePlan& plan,
+                                       std::span<const double> locked,
+                                       std::span<const double> spread) const noexcept {
+  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
+  if (plan.points_per_revolution == 0) {
+    return Error{std::string(kStage) + ": the plan holds no grid (Plan() failed or never ran)"};
+  }
+  const std::size_t half = plan.points_per_revolution / 2;
+  if (locked.size() != spread.size() || locked.size() > half + 1) {
+    return Error{std::string(kStage) + ": revolution spread asked for " +
+                 std::to_string(locked.size()) + " and " + std::to_string(spread.size()) +
+                 " orders, need equal counts of at most " + std::to_string(half + 1) +
+                 " for a revolution of " + std::to_string(plan.points_per_revolution) + " points"};
+  }
+  return dsp_detail::CheckFinite(kStage, "signal", signal);
+}
+
+Status SynchronousAverage::Process(std::span<const double> signal,
+                                   const SynchronousAveragePlan& plan,
+                                   SynchronousAverageRecord& out) noexcept {
+  if (Status s = CheckProcess(signal, plan, out); !s) return s;
+  // Angular resampling and averaging, accumulated in the forward plan's input.
   const std::size_t m_points = plan.points_per_revolution;
-  const std::size_t revolutions = plan.revolutions;
+  std::span<double> average = forward_[PlanIndex(m_points)].real_in();
+  std::fill(average.begin(), average.end(), 0.0);
+  for (std::size_t r = 0; r < plan.revolutions; ++r) {
+    Resample({signal.data(), block_length_, &plan, r * m_points, m_points, average.data(), true});
+  }
+  FinishAverage(plan, out);
+  return Status::Ok();
+}
+
+void SynchronousAverage::FinishAverage(const SynchronousAveragePlan& plan,
+                                       SynchronousAverageRecord& out) noexcept {
+  const std::size_t m_points = plan.points_per_revolution;
   const std::size_t half = m_points / 2;
   FftPlan& forward = forward_[PlanIndex(m_points)];
   FftPlan& inverse = inverse_[PlanIndex(m_points)];
-
-  // Angular resampling and averaging, accumulated in the forward plan's input.
   std::span<double> average = forward.real_in();
-  std::fill(average.begin(), average.end(), 0.0);
-  for (std::size_t r = 0; r < revolutions; ++r) {
-    Resample({signal.data(), block_length_, &plan, r * m_points, m_points, average.data(), true});
-  }
-  const double inv_r = 1.0 / static_cast<double>(revolutions);
+  const double inv_r = 1.0 / static_cast<double>(plan.revolutions);
   for (double& v : average) v *= inv_r;
   std::copy(average.begin(), average.end(), out.tsa_storage.begin());
 
@@ -325,30 +355,43 @@ Status SynchronousAverage::Process(std::span<const double> signal,
   }
 
   out.points_per_revolution = m_points;
-  out.revolutions = revolutions;
+  out.revolutions = plan.revolutions;
   out.shaft_hz = plan.shaft_hz;
   out.nyquist_order = nyquist_order;
-  return Status::Ok();
 }
 
 Status SynchronousAverage::RevolutionSpread(std::span<const double> signal,
                                             const SynchronousAveragePlan& plan,
                                             std::span<double> locked,
                                             std::span<double> spread) noexcept {
-  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
-  if (plan.points_per_revolution == 0) {
-    return Error{std::string(kStage) + ": the plan holds no grid (Plan() failed or never ran)"};
-  }
+  if (Status s = CheckSpread(signal, plan, locked, spread); !s) return s;
+  Spread(signal, plan, locked, spread, nullptr);
+  return Status::Ok();
+}
+
+Status SynchronousAverage::ProcessWithSpread(std::span<const double> signal,
+                                             const SynchronousAveragePlan& plan,
+                                             SynchronousAverageRecord& out,
+                                             std::span<double> locked,
+                                             std::span<double> spread) noexcept {
+  if (Status s = CheckProcess(signal, plan, out); !s) return s;
+  if (Status s = CheckSpread(signal, plan, locked, spread); !s) return s;
+  std::span<double> average(average_scratch_.data(), plan.points_per_revolution);
+  std::fill(average.begin(), average.end(), 0.0);
+  Spread(signal, plan, locked, spread, average.data());
+  std::span<double> in = forward_[PlanIndex(plan.points_per_revolution)].real_in();
+  std::copy(average.begin(), average.end(), in.begin());
+  FinishAverage(plan, out);
+  return Status::Ok();
+}
+
+// RevolutionSpread()'s work; with `average`, each resampled revolution is also added to it
+// before its window (the sum Process() accumulates, term for term).
+void SynchronousAverage::Spread(std::span<const double> signal,
+                                const SynchronousAveragePlan& plan, std::span<double> locked,
+                                std::span<double> spread, double* average) noexcept {
   const std::size_t m_points = plan.points_per_revolution;
   const std::size_t half = m_points / 2;
-  if (locked.size() != spread.size() || locked.size() > half + 1) {
-    return Error{std::string(kStage) + ": revolution spread asked for " +
-                 std::to_string(locked.size()) + " and " + std::to_string(spread.size()) +
-                 " orders, need equal counts of at most " + std::to_string(half + 1) +
-                 " for a revolution of " + std::to_string(m_points) + " points"};
-  }
-  if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) return s;
-
   FftPlan& forward = forward_[PlanIndex(m_points)];
   const std::span<double> revolution = forward.real_in();
   const std::span<const std::complex<double>> bins = forward.complex_out();
@@ -363,6 +406,9 @@ Status SynchronousAverage::RevolutionSpread(std::span<const double> signal,
   for (std::size_t r = 0; r < plan.revolutions; ++r) {
     Resample({signal.data(), block_length_, &plan, r * m_points, m_points, revolution.data(),
               false});
+    if (average != nullptr) {
+      for (std::size_t m = 0; m < m_points; ++m) average[m] += revolution[m];
+    }
     for (std::size_t m = 0; m < m_points; ++m) revolution[m] *= hann_[m * window_step];
     forward.Execute();
     // sum of Y and of |Y|^2 for now; DC and order M/2 take the edge scaling.
@@ -375,7 +421,6 @@ Status SynchronousAverage::RevolutionSpread(std::span<const double> signal,
     locked[k] = std::norm(mean[k]);
     spread[k] = std::max(0.0, spread[k] * inv_r - locked[k]);
   }
-  return Status::Ok();
 }
 
 }  // namespace gearpath

@@ -150,6 +150,14 @@ class SynchronousAverage {
   Status RevolutionSpread(std::span<const double> signal, const SynchronousAveragePlan& plan,
                           std::span<double> locked, std::span<double> spread) noexcept;
 
+  // Process(signal, plan, out) and RevolutionSpread(signal, plan, locked, spread) from one
+  // angular resampling (each revolution, resampled once, is added to the average and
+  // windowed for its spectrum): bit-identical to the two calls at about half the resampling.
+  // Rejects what either rejects; noexcept, no allocation.
+  Status ProcessWithSpread(std::span<const double> signal, const SynchronousAveragePlan& plan,
+                           SynchronousAverageRecord& out, std::span<double> locked,
+                           std::span<double> spread) noexcept;
+
  private:
   SynchronousAverage() = default;
 
@@ -162,6 +170,16 @@ class SynchronousAverage {
   SynchronousAveragePlan plan_;  // the one-step Process()'s grid (empty with OneStepPlan::kNone)
   std::vector<double> hann_;     // periodic Hann window of max M points (M = max / s: every s-th)
   std::vector<std::complex<double>> mean_scratch_;  // max M / 2 + 1
+  std::vector<double> average_scratch_;             // max M: ProcessWithSpread's sum
+
+  Status CheckProcess(std::span<const double> signal, const SynchronousAveragePlan& plan,
+                      const SynchronousAverageRecord& out) const noexcept;
+  Status CheckSpread(std::span<const double> signal, const SynchronousAveragePlan& plan,
+                     std::span<const double> locked, std::span<const double> spread) const noexcept;
+  // The average (summed in the forward plan's input) scaled, transformed and imaged out.
+  void FinishAverage(const SynchronousAveragePlan& plan, SynchronousAverageRecord& out) noexcept;
+  void Spread(std::span<const double> signal, const SynchronousAveragePlan& plan,
+              std::span<double> locked, std::span<double> spread, double* average) noexcept;
 };
 
 }  // namespace gearpath

@@ -315,20 +315,23 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
       const RateGroup& rg = m.rate_groups[g];
       const double shaft_hz = rg.ratio * w.speed_hz;
       w.slot_shaft_hz[slot] = shaft_hz;
-      if (!plan_ok_[g] || !cw.tsa->Process(signal, cw.plans[g], cw.record).ok()) continue;
-      const double na4_reference =
-          st.residual_variance_healthy.blocks > 0 ? st.residual_variance_healthy.mean[slot] : 0.0;
-      // The synchronous low-order ratio costs R more FFTs: measured channels only (the
-      // contributions are built from them; the forces are not scored).
+      if (!plan_ok_[g]) continue;
+      // The revolutions' spread (for the synchronous ratios) costs R more FFTs: measured
+      // channels only (the contributions are built from them; the forces are not scored).
       RevolutionSpreadView spread;
       if (cs.signal < m.channels) {
-        const std::size_t orders = cw.record.orders().size();
+        const std::size_t orders = cw.plans[g].points_per_revolution / 2 + 1;
         const std::span<double> locked(cw.locked_power.data(), orders);
         const std::span<double> between(cw.spread_power.data(), orders);
-        if (cw.tsa->RevolutionSpread(signal, cw.plans[g], locked, between).ok()) {
-          spread = {locked, between, cw.record.revolutions, cw.record.nyquist_order};
+        if (!cw.tsa->ProcessWithSpread(signal, cw.plans[g], cw.record, locked, between).ok()) {
+          continue;
         }
+        spread = {locked, between, cw.record.revolutions, cw.record.nyquist_order};
+      } else if (!cw.tsa->Process(signal, cw.plans[g], cw.record).ok()) {
+        continue;
       }
+      const double na4_reference =
+          st.residual_variance_healthy.blocks > 0 ? st.residual_variance_healthy.mean[slot] : 0.0;
       if (!cw.indicators
                ->Compute(cw.record.tsa(), cw.record.orders(), rg.mesh_orders, na4_reference,
                          cw.values, spread)

@@ -328,6 +328,52 @@ TEST(SynchronousAverageRevolutionSpread, ABurstInOneRevolutionIsLockedOnlyAsMuch
   EXPECT_GT(total, 1e-4);  // the burst is there
 }
 
+// ProcessWithSpread resamples each revolution once for both results: the TSA, its orders and
+// the spread must be the bits of the two separate calls, on a constant-speed grid and a warped
+// one, and what either call refuses it refuses.
+TEST(SynchronousAverageRevolutionSpread, ProcessWithSpreadIsBitIdenticalToTheTwoCalls) {
+  constexpr std::size_t kN = 8000;
+  auto stage = SynchronousAverage::Create(kN, kFs, 4096).value();
+  std::vector<double> warp(kN);
+  for (std::size_t i = 0; i < kN; ++i) {
+    warp[i] = static_cast<double>(i) +
+              3.0 * std::sin(dsp_test::kTwoPi * static_cast<double>(i) / static_cast<double>(kN));
+  }
+  for (const bool warped : {false, true}) {
+    SynchronousAveragePlan plan = stage.MakePlan();
+    ASSERT_TRUE(stage.Plan(kShaftHz, plan, warped ? warp : std::span<const double>()).ok());
+    ASSERT_GE(plan.revolutions, 5u);
+    const std::size_t orders = plan.points_per_revolution / 2 + 1;
+    const std::vector<double> x = dsp_test::WhiteNoise(kN, 1.0, warped ? 7u : 8u);
+    SynchronousAverageRecord apart = stage.MakeRecord();
+    SynchronousAverageRecord fused = stage.MakeRecord();
+    std::vector<double> locked(orders), spread(orders), fused_locked(orders),
+        fused_spread(orders);
+    ASSERT_TRUE(stage.Process(x, plan, apart).ok());
+    ASSERT_TRUE(stage.RevolutionSpread(x, plan, locked, spread).ok());
+    const Status s = stage.ProcessWithSpread(x, plan, fused, fused_locked, fused_spread);
+    ASSERT_TRUE(s.ok()) << s.error();
+    ASSERT_EQ(fused.revolutions, apart.revolutions);
+    ASSERT_EQ(fused.points_per_revolution, apart.points_per_revolution);
+    for (std::size_t m = 0; m < apart.tsa().size(); ++m) ASSERT_EQ(fused.tsa()[m], apart.tsa()[m]);
+    for (std::size_t k = 0; k < orders; ++k) {
+      ASSERT_EQ(fused.orders()[k], apart.orders()[k]) << "order " << k;
+      ASSERT_EQ(fused_locked[k], locked[k]) << "order " << k;
+      ASSERT_EQ(fused_spread[k], spread[k]) << "order " << k;
+    }
+  }
+  SynchronousAveragePlan none = stage.MakePlan();
+  SynchronousAverageRecord out = stage.MakeRecord();
+  std::vector<double> a(10), b(10), c(9);
+  const Status no_grid = stage.ProcessWithSpread(std::vector<double>(kN, 1.0), none, out, a, b);
+  ASSERT_FALSE(no_grid.ok());
+  EXPECT_NE(no_grid.error().find("plan holds no grid"), std::string::npos) << no_grid.error();
+  ASSERT_TRUE(stage.Plan(kShaftHz, none).ok());
+  const Status unequal = stage.ProcessWithSpread(std::vector<double>(kN, 1.0), none, out, a, c);
+  ASSERT_FALSE(unequal.ok());
+  EXPECT_NE(unequal.error().find("equal counts"), std::string::npos) << unequal.error();
+}
+
 TEST(SynchronousAverageRevolutionSpread, RejectsSpansOfWrongSizesAndPlansWithoutAGrid) {
   const std::size_t n = 8000;
   const std::vector<double> x(n, 1.0);
