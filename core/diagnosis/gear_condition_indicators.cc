@@ -289,11 +289,15 @@ Status GearConditionIndicators::Compute(std::span<const double> tsa,
 
   // ---- Line sums.
   double mesh_amplitude_sum = 0.0;
+  double regular_energy = 0.0;  // the regular signal's variance, by Parseval (no DC line)
   double low_energy = 0.0;
   double high_energy = 0.0;
   for (std::size_t k = 1; k <= half; ++k) {
     if ((role[k] & kMeshLine) != 0) mesh_amplitude_sum += std::abs(orders[k]);
-    if (is_regular(k)) continue;
+    if (is_regular(k)) {
+      regular_energy += energy(k);
+      continue;
+    }
     if (2 * k < z_min) low_energy += energy(k);
     if (k > z_max) high_energy += energy(k);
   }
@@ -330,7 +334,7 @@ Status GearConditionIndicators::Compute(std::span<const double> tsa,
   const double slf =
       Ratio(std::abs(orders[z_dominant - 1]) + std::abs(orders[z_dominant + 1]), tsa_rms);
 
-  // ---- Regular, residual and difference signals, rebuilt in time from their lines.
+  // ---- Residual and difference signals, rebuilt in time from their lines.
   FftPlan& plan = inverse_[PlanIndex(m_points)];
   const auto rebuild = [&](auto keep) -> std::span<const double> {
     std::span<std::complex<double>> in = plan.complex_in();
@@ -340,8 +344,9 @@ Status GearConditionIndicators::Compute(std::span<const double> tsa,
     plan.Execute();
     return plan.real_out();
   };
-  const double regular_rms =
-      std::sqrt(CentralMoments(rebuild([&](std::size_t k) { return is_regular(k); })).m2);
+  // The regular signal's RMS needs no time signal (Parseval); the residual's and the
+  // difference's higher moments do.
+  const double regular_rms = std::sqrt(regular_energy);
   const Moments residual = CentralMoments(rebuild([&](std::size_t k) { return !is_regular(k); }));
   const Moments difference = CentralMoments(
       rebuild([&](std::size_t k) { return !is_regular(k) && (role[k] & kFirstSideband) == 0; }));

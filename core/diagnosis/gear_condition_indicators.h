@@ -12,7 +12,8 @@
 //     so the DC line belongs to no signal);
 //   - difference: the residual without the first-order sidebands h z +/- 1 of the mesh
 //     harmonics.
-// Each signal is rebuilt in time by an inverse r2c transform of its lines (plans made once).
+// The residual and difference signals are rebuilt in time by an inverse r2c transform of their
+// lines (plans made once); the regular signal is needed only for its RMS, which its lines give.
 //
 // Assumes: the TSA and its spectrum come from the same record (not checked: that would cost a
 // forward FFT), amplitude-scaled as in spectrum.h; M is a power of two; the order spectrum is
