@@ -224,7 +224,9 @@ TEST(OrderTrackerTest, TheMedianOfSeveralWarpsFollowsTheOnesThatAgree) {
     const double c = warps[2 * kN + i];
     EXPECT_EQ(median[i], std::max(std::min(a, b), std::min(std::max(a, b), c))) << i;
     ASSERT_LE(std::abs(median[i] - truth[i]), 0.1 + 1e-12) << i;
-    if (i > 0) ASSERT_GT(median[i], median[i - 1]) << i;
+    if (i > 0) {
+      ASSERT_GT(median[i], median[i - 1]) << i;
+    }
   }
   // Two warps: their mean. Out of range: left as it is.
   MedianOfWarps(std::span<const double>(warps).first(2 * kN), 2, median);
