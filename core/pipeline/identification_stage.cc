@@ -23,36 +23,35 @@ double MedianInPlace(std::vector<double>& v, std::size_t n) noexcept {
   return *mid;
 }
 
-// Per (path, FRF row) and bin of the chunk: band[pc][j] += |H_cp|^2 |F_p|^2 on the band bins,
-// side[pc][j] the same on the sideband lines. Element-wise over the chunk's bins (the sums over
-// the bins are taken once per block), so the compiler vectorises it without reordering a sum.
-// `power` is the |H|^2 table at the chunk's first bin (rows `stride` apart), `count` the chunk's
-// bins, `band_weight`/`side_weight` 1 or 0 per bin.
+// One (path, FRF row)'s band and sideband energies: sum over the bins of |H_cp|^2 times the
+// path's band and sideband weighted |F_p|^2. Eight partial sums per figure in a fixed order
+// (element-wise over the lanes, so the compiler vectorises it and every clone rounds alike),
+// added up at the end.
 GEARPATH_SIMD_CLONES
-void AccumulateEnergies(const float* power, std::size_t stride, std::size_t paths,
-                        std::size_t channels, std::size_t count, const double* __restrict f_re,
-                        const double* __restrict f_im, const double* __restrict band_weight,
-                        const double* __restrict side_weight, double* __restrict band,
-                        double* __restrict side) noexcept {
-  for (std::size_t p = 0; p < paths; ++p) {
-    double f2_band[kChunk];
-    double f2_side[kChunk];
-    for (std::size_t j = 0; j < count; ++j) {
-      const double re = f_re[p * kChunk + j];
-      const double im = f_im[p * kChunk + j];
-      f2_band[j] = band_weight[j] * (re * re + im * im);
-      f2_side[j] = side_weight[j] * f2_band[j];
+void DotEnergies(const float* __restrict power, const double* __restrict f2_band,
+                 const double* __restrict f2_side, std::size_t bins, double& band,
+                 double& side) noexcept {
+  constexpr std::size_t kLanes = 8;
+  double b[kLanes] = {};
+  double s[kLanes] = {};
+  std::size_t j = 0;
+  for (; j + kLanes <= bins; j += kLanes) {
+    for (std::size_t k = 0; k < kLanes; ++k) {
+      const double h2 = static_cast<double>(power[j + k]);
+      b[k] += h2 * f2_band[j + k];
+      s[k] += h2 * f2_side[j + k];
     }
-    for (std::size_t c = 0; c < channels; ++c) {
-      const float* row = power + (p * channels + c) * stride;
-      double* b = band + (p * channels + c) * kChunk;
-      double* s = side + (p * channels + c) * kChunk;
-      for (std::size_t j = 0; j < count; ++j) {
-        const double h2 = static_cast<double>(row[j]);
-        b[j] += h2 * f2_band[j];
-        s[j] += h2 * f2_side[j];
-      }
-    }
+  }
+  for (std::size_t k = 0; j < bins; ++j, ++k) {
+    const double h2 = static_cast<double>(power[j]);
+    b[k] += h2 * f2_band[j];
+    s[k] += h2 * f2_side[j];
+  }
+  band = 0.0;
+  side = 0.0;
+  for (std::size_t k = 0; k < kLanes; ++k) {
+    band += b[k];
+    side += s[k];
   }
 }
 
@@ -76,8 +75,8 @@ Status IdentificationStage::Configure(const MachineContext& machine, BlockWorksp
   x_im_.assign(machine.channels * kChunk, 0.0);
   f_re_.assign(machine.paths * kChunk, 0.0);
   f_im_.assign(machine.paths * kChunk, 0.0);
-  band_acc_.assign(machine.paths * machine.channels * kChunk, 0.0);
-  side_acc_.assign(machine.paths * machine.channels * kChunk, 0.0);
+  f2_band_.assign(in_range, 0.0);
+  f2_side_.assign(in_range, 0.0);
   x_ = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(machine.channels));
   forces_ = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(machine.paths));
   alpha_.assign(in_range, 0.0);
@@ -143,8 +142,6 @@ RejectReason IdentificationStage::Process(StageContext& ctx) noexcept {
   const auto in_range = static_cast<std::size_t>(w.map.frf.bins());
   const std::size_t first = w.map.first_bin;
   const bool batched = op_->precomputed();
-  std::fill(band_acc_.begin(), band_acc_.end(), 0.0);
-  std::fill(side_acc_.begin(), side_acc_.end(), 0.0);
   residual_ = 0.0;
   used_ = 0;
   cond_max_ = 0.0;
@@ -165,16 +162,11 @@ RejectReason IdentificationStage::Process(StageContext& ctx) noexcept {
       std::fill(im + count, im + kChunk, 0.0);
     }
     bool any_band = false;
-    for (std::size_t j = 0; j < kChunk; ++j) {
-      const bool in_band = j < count && w.band_mask[first + b0 + j] != 0;
-      band_[j] = in_band ? 1.0 : 0.0;
-      side_[j] = in_band && w.sideband_mask[first + b0 + j] != 0 ? 1.0 : 0.0;
-      any_band = any_band || in_band;
-    }
+    for (std::size_t j = 0; j < count; ++j) any_band = any_band || w.band_mask[first + b0 + j] != 0;
     if (batched) {
       op_->ForcesOfChunk(chunk, x_re_.data(), x_im_.data(), f_re_.data(), f_im_.data());
       for (std::size_t j = 0; j < count && any_band; ++j) {
-        if (band_[j] != 0.0) {
+        if (w.band_mask[first + b0 + j] != 0) {
           residual_ += op_->Residual2(static_cast<Eigen::Index>(b0 + j), x_re_.data() + j,
                                       x_im_.data() + j, kChunk);
         }
@@ -183,7 +175,7 @@ RejectReason IdentificationStage::Process(StageContext& ctx) noexcept {
       IdentifyChunkPerBin(w, chunk, count);
     }
     for (std::size_t j = 0; j < count && any_band; ++j) {
-      if (band_[j] == 0.0) continue;
+      if (w.band_mask[first + b0 + j] == 0) continue;
       double x2 = 0.0;
       for (std::size_t c = 0; c < channels; ++c) {
         const double re = x_re_[c * kChunk + j];
@@ -198,24 +190,23 @@ RejectReason IdentificationStage::Process(StageContext& ctx) noexcept {
         dst[j] = {f_re_[p * kChunk + j], f_im_[p * kChunk + j]};
       }
     }
-    if (any_band) {
-      AccumulateEnergies(table_->Row(0, 0) + b0, in_range, paths, channels, count,
-                         f_re_.data(), f_im_.data(), band_.data(), side_.data(),
-                         band_acc_.data(), side_acc_.data());
-    }
   }
-  // Each (path, row)'s energies: the per-bin partial sums of the chunks, summed.
+  // Each (path, FRF row)'s energies, |H_cp|^2 |F_p|^2 over the analysis band and over its
+  // sideband lines: one streaming pass per path over its |H|^2 rows, after the forces.
   for (std::size_t p = 0; p < paths; ++p) {
+    const BlockWorkspace::Cd* f = w.forces.data() + p * in_range;
+    for (std::size_t i = 0; i < in_range; ++i) {
+      const bool in_band = w.band_mask[first + i] != 0;
+      f2_band_[i] = in_band ? std::norm(f[i]) : 0.0;
+      f2_side_[i] = in_band && w.sideband_mask[first + i] != 0 ? f2_band_[i] : 0.0;
+    }
     double side = 0.0;
     for (std::size_t c = 0; c < channels; ++c) {
-      const double* b = band_acc_.data() + (p * channels + c) * kChunk;
-      const double* s = side_acc_.data() + (p * channels + c) * kChunk;
       double band = 0.0;
-      for (std::size_t j = 0; j < kChunk; ++j) {
-        band += b[j];
-        side += s[j];
-      }
+      double side_c = 0.0;
+      DotEnergies(table_->Row(p, c), f2_band_.data(), f2_side_.data(), in_range, band, side_c);
       w.path_channel_energy[p * channels + c] = band;
+      side += side_c;
     }
     w.path_sideband_energy[p] = side;
   }

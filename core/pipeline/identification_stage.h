@@ -7,15 +7,15 @@
 // One pass over the bins (issue 9), IdentificationOperator::kChunkBins at a time: the chunk's
 // responses are split into real and imaginary planes, its forces come from the contiguous
 // precomputed operators (a vectorised kernel), and in the same pass, while they are in cache,
-// the residual ||x - H F||^2 of the analysis-band bins and each path's contribution energy per
-// FRF row, |H_cj|^2 |F_j|^2 over the analysis band and over the mesh sideband lines
-// (frf_power_table.h; the path-energy stage turns them into shares and the criterion). With a
+// the residual ||x - H F||^2 of the analysis-band bins. Then each path's contribution energy
+// per FRF row, |H_cj|^2 |F_j|^2 over the analysis band and over the mesh sideband lines, as one
+// streaming dot product per (path, row) over the |H|^2 table (frf_power_table.h; the
+// path-energy stage turns them into shares and the criterion). With a
 // parameter chosen per block (kGcv, kDiscrepancy) the chunk's bins go through Identify() one by
 // one instead. With a precomputed operator the parameter and condition figures do not depend
 // on the block: their medians are taken once, at Configure.
 #pragma once
 
-#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -41,11 +41,10 @@ class IdentificationStage final : public PipelineStage {
   std::optional<IdentificationOperator> op_;
   const FrfPowerTable* table_ = nullptr;  // the workspace's (BlockWorkspace::frf_table)
   // One chunk, split planes (identification_operator.h): responses channels x kChunk, forces
-  // paths x kChunk, and per bin the band and sideband weights of |F|^2.
+  // paths x kChunk.
   std::vector<double> x_re_, x_im_, f_re_, f_im_;
-  std::array<double, kChunk> band_{}, side_{};  // 1 or 0 per bin of the chunk
-  // Per (path, FRF row), path-major, per bin of a chunk: band and sideband energy partial sums.
-  std::vector<double> band_acc_, side_acc_;
+  // One path's |F|^2 per in-range bin on the analysis band, and on its sideband lines (0 off).
+  std::vector<double> f2_band_, f2_side_;
   Eigen::VectorXcd x_;       // channels: responses of one bin (per-bin path)
   Eigen::VectorXcd forces_;  // paths: forces of one bin (per-bin path)
   // Block figures: fixed at Configure for a precomputed operator; else per block.
