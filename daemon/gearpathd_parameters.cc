@@ -401,7 +401,7 @@ ParamSpec AnalysisSection() {
                Number("mesh_separation",
                       "A mesh is named alone when its transfer-signature evidence leads the "
                       "next mesh's by this factor; otherwise both meshes' gears are candidates.",
-                      1.0, 100.0, 1.3)})});
+                      1.0, 100.0, 1.1)})});
 }
 
 ParamSpec MachineSpec() {

@@ -161,7 +161,7 @@ struct AnalysisOptions {
   int clear_blocks = 3;
   // Mesh decision: the best mesh's evidence must exceed the next one's by this factor, else
   // both meshes' gears are reported as candidates.
-  double mesh_separation = 1.3;
+  double mesh_separation = 1.1;
 };
 
 struct MachineSetup {
