@@ -270,30 +270,28 @@ Status SynchronousAverage::Process(std::span<const double> signal, double shaft_
   return Process(signal, plan_, out);
 }
 
-Status SynchronousAverage::CheckProcess(std::span<const double> signal,
-                                        const SynchronousAveragePlan& plan,
-                                        const SynchronousAverageRecord& out) const noexcept {
+Status SynchronousAverage::CheckSignal(std::span<const double> signal,
+                                       const SynchronousAveragePlan& plan) const noexcept {
   if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
   if (plan.points_per_revolution == 0) {
     return Error{std::string(kStage) + ": the plan holds no grid (Plan() failed or never ran)"};
   }
+  return dsp_detail::CheckFinite(kStage, "signal", signal);
+}
+
+Status SynchronousAverage::CheckRecord(const SynchronousAverageRecord& out) const noexcept {
   if (out.tsa_storage.size() < max_points_ || out.order_storage.size() < max_points_ / 2 + 1) {
     return Error{std::string(kStage) +
                  ": output record was not made by this stage's MakeRecord() (storage for " +
                  std::to_string(out.tsa_storage.size()) + " points, need " +
                  std::to_string(max_points_) + ")"};
   }
-  return dsp_detail::CheckFinite(kStage, "signal", signal);
+  return Status::Ok();
 }
 
-Status SynchronousAverage::CheckSpread(std::span<const double> signal,
-                                       const SynchronousAveragePlan& plan,
-                                       std::span<const double> locked,
-                                       std::span<const double> spread) const noexcept {
-  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
-  if (plan.points_per_revolution == 0) {
-    return Error{std::string(kStage) + ": the plan holds no grid (Plan() failed or never ran)"};
-  }
+Status SynchronousAverage::CheckSpreadSpans(const SynchronousAveragePlan& plan,
+                                            std::span<const double> locked,
+                                            std::span<const double> spread) const noexcept {
   const std::size_t half = plan.points_per_revolution / 2;
   if (locked.size() != spread.size() || locked.size() > half + 1) {
     return Error{std::string(kStage) + ": revolution spread asked for " +
@@ -301,13 +299,14 @@ Status SynchronousAverage::CheckSpread(std::span<const double> signal,
                  " orders, need equal counts of at most " + std::to_string(half + 1) +
                  " for a revolution of " + std::to_string(plan.points_per_revolution) + " points"};
   }
-  return dsp_detail::CheckFinite(kStage, "signal", signal);
+  return Status::Ok();
 }
 
 Status SynchronousAverage::Process(std::span<const double> signal,
                                    const SynchronousAveragePlan& plan,
                                    SynchronousAverageRecord& out) noexcept {
-  if (Status s = CheckProcess(signal, plan, out); !s) return s;
+  if (Status s = CheckSignal(signal, plan); !s) return s;
+  if (Status s = CheckRecord(out); !s) return s;
   // Angular resampling and averaging, accumulated in the forward plan's input.
   const std::size_t m_points = plan.points_per_revolution;
   std::span<double> average = forward_[PlanIndex(m_points)].real_in();
@@ -364,7 +363,8 @@ Status SynchronousAverage::RevolutionSpread(std::span<const double> signal,
                                             const SynchronousAveragePlan& plan,
                                             std::span<double> locked,
                                             std::span<double> spread) noexcept {
-  if (Status s = CheckSpread(signal, plan, locked, spread); !s) return s;
+  if (Status s = CheckSignal(signal, plan); !s) return s;
+  if (Status s = CheckSpreadSpans(plan, locked, spread); !s) return s;
   Spread(signal, plan, locked, spread, nullptr);
   return Status::Ok();
 }
@@ -374,8 +374,9 @@ Status SynchronousAverage::ProcessWithSpread(std::span<const double> signal,
                                              SynchronousAverageRecord& out,
                                              std::span<double> locked,
                                              std::span<double> spread) noexcept {
-  if (Status s = CheckProcess(signal, plan, out); !s) return s;
-  if (Status s = CheckSpread(signal, plan, locked, spread); !s) return s;
+  if (Status s = CheckSignal(signal, plan); !s) return s;
+  if (Status s = CheckRecord(out); !s) return s;
+  if (Status s = CheckSpreadSpans(plan, locked, spread); !s) return s;
   std::span<double> average(average_scratch_.data(), plan.points_per_revolution);
   std::fill(average.begin(), average.end(), 0.0);
   Spread(signal, plan, locked, spread, average.data());

@@ -172,10 +172,13 @@ class SynchronousAverage {
   std::vector<std::complex<double>> mean_scratch_;  // max M / 2 + 1
   std::vector<double> average_scratch_;             // max M: ProcessWithSpread's sum
 
-  Status CheckProcess(std::span<const double> signal, const SynchronousAveragePlan& plan,
-                      const SynchronousAverageRecord& out) const noexcept;
-  Status CheckSpread(std::span<const double> signal, const SynchronousAveragePlan& plan,
-                     std::span<const double> locked, std::span<const double> spread) const noexcept;
+  // Input checks shared by the two-step Process, RevolutionSpread and ProcessWithSpread (the
+  // signal is scanned once per call).
+  Status CheckSignal(std::span<const double> signal,
+                     const SynchronousAveragePlan& plan) const noexcept;
+  Status CheckRecord(const SynchronousAverageRecord& out) const noexcept;
+  Status CheckSpreadSpans(const SynchronousAveragePlan& plan, std::span<const double> locked,
+                          std::span<const double> spread) const noexcept;
   // The average (summed in the forward plan's input) scaled, transformed and imaged out.
   void FinishAverage(const SynchronousAveragePlan& plan, SynchronousAverageRecord& out) noexcept;
   void Spread(std::span<const double> signal, const SynchronousAveragePlan& plan,
