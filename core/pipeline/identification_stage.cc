@@ -161,11 +161,9 @@ RejectReason IdentificationStage::Process(StageContext& ctx) noexcept {
       std::fill(re + count, re + kChunk, 0.0);
       std::fill(im + count, im + kChunk, 0.0);
     }
-    bool any_band = false;
-    for (std::size_t j = 0; j < count; ++j) any_band = any_band || w.band_mask[first + b0 + j] != 0;
     if (batched) {
       op_->ForcesOfChunk(chunk, x_re_.data(), x_im_.data(), f_re_.data(), f_im_.data());
-      for (std::size_t j = 0; j < count && any_band; ++j) {
+      for (std::size_t j = 0; j < count; ++j) {
         if (w.band_mask[first + b0 + j] != 0) {
           residual_ += op_->Residual2(static_cast<Eigen::Index>(b0 + j), x_re_.data() + j,
                                       x_im_.data() + j, kChunk);
@@ -174,7 +172,7 @@ RejectReason IdentificationStage::Process(StageContext& ctx) noexcept {
     } else {
       IdentifyChunkPerBin(w, chunk, count);
     }
-    for (std::size_t j = 0; j < count && any_band; ++j) {
+    for (std::size_t j = 0; j < count; ++j) {
       if (w.band_mask[first + b0 + j] == 0) continue;
       double x2 = 0.0;
       for (std::size_t c = 0; c < channels; ++c) {
