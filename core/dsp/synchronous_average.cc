@@ -7,12 +7,9 @@
 #include <string>
 #include <utility>
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
-#endif
-
 #include "core/common/simd_clones.h"
 #include "core/dsp/cubic_interpolation.h"
+#include "core/dsp/grid_resampler.h"
 #include "core/dsp/input_checks.h"
 #include "core/dsp/order_tracker.h"
 
@@ -28,87 +25,14 @@ std::size_t PlanIndex(std::size_t points) noexcept {
   return static_cast<std::size_t>(std::countr_zero(points) - std::countr_zero(kMinPoints));
 }
 
-// The points [begin, begin + count) of `plan` read from x (n samples): out[m] = the point's
-// value (or out[m] += it with `add`), as ApplyCubicStencil computes it.
-struct ResampleArgs {
-  const double* x;
-  std::size_t n;
-  const SynchronousAveragePlan* plan;
-  std::size_t begin;
-  std::size_t count;
-  double* out;
-  bool add;
-};
-
-inline double PointAt(const ResampleArgs& a, std::size_t p) noexcept {
-  const SynchronousAveragePlan& pl = *a.plan;
-  const double* s = a.x + pl.first[p];
-  // The same terms in the same order as ApplyCubicStencil.
-  return pl.w0[p] * s[0] + pl.w1[p] * s[1] - pl.w2[p] * s[2] + pl.w3[p] * s[3];
+// The points [begin, begin + count) of `plan` read from x: out[m] = the point's value (or
+// out[m] += it with `add`).
+void Resample(const double* x, std::size_t n, const SynchronousAveragePlan& plan, std::size_t begin,
+              std::size_t count, double* out, bool add) noexcept {
+  const CubicGridView grid{plan.first.data(), plan.w0.data(), plan.w1.data(), plan.w2.data(),
+                           plan.w3.data()};
+  ResampleOnGrid(x, n, grid, begin, count, out, add);
 }
-
-void ResampleScalar(const ResampleArgs& a, std::size_t from) noexcept {
-  for (std::size_t m = from; m < a.count; ++m) {
-    const double v = PointAt(a, a.begin + m);
-    a.out[m] = a.add ? a.out[m] + v : v;
-  }
-}
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(GEARPATH_NO_SIMD_CLONES)
-#define GEARPATH_RESAMPLE_AVX512 1
-// Eight points at a time: their samples lie in the 16-sample window at the first one's first
-// sample whenever the eighth one's stencil ends inside it (points at most a sample apart, as
-// M >= fs / f makes them); two loads and four two-register permutes replace 32 loads. Groups
-// that do not fit (a warp stretching the grid, the block's end) go point by point.
-__attribute__((target("avx512f"))) void ResampleAvx512(const ResampleArgs& a) noexcept {
-  const SynchronousAveragePlan& pl = *a.plan;
-  const std::uint32_t* first = pl.first.data() + a.begin;
-  const double* w0 = pl.w0.data() + a.begin;
-  const double* w1 = pl.w1.data() + a.begin;
-  const double* w2 = pl.w2.data() + a.begin;
-  const double* w3 = pl.w3.data() + a.begin;
-  const __m512i one = _mm512_set1_epi64(1);
-  const __m512i last_in_window = _mm512_set1_epi64(15);
-  std::size_t m = 0;
-  for (; m + 8 <= a.count; m += 8) {
-    const std::uint32_t f0 = first[m];
-    const __m256i f = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(first + m));
-    const __m512i i0 =
-        _mm512_maskz_cvtepu32_epi64(0xFF, _mm256_sub_epi32(f, _mm256_set1_epi32(static_cast<int>(f0))));
-    const __m512i i1 = _mm512_add_epi64(i0, one);
-    const __m512i i2 = _mm512_add_epi64(i1, one);
-    const __m512i i3 = _mm512_add_epi64(i2, one);
-    // Every stencil inside the window (a point before f0 wraps to a huge index), and the window
-    // inside the block.
-    if (_mm512_cmpgt_epu64_mask(i3, last_in_window) != 0 || f0 + 16 > a.n) {
-      for (std::size_t k = m; k < m + 8; ++k) {
-        const double v = PointAt(a, a.begin + k);
-        a.out[k] = a.add ? a.out[k] + v : v;
-      }
-      continue;
-    }
-    const __m512d lo = _mm512_loadu_pd(a.x + f0);
-    const __m512d hi = _mm512_loadu_pd(a.x + f0 + 8);
-    const __m512d s0 = _mm512_permutex2var_pd(lo, i0, hi);
-    const __m512d s1 = _mm512_permutex2var_pd(lo, i1, hi);
-    const __m512d s2 = _mm512_permutex2var_pd(lo, i2, hi);
-    const __m512d s3 = _mm512_permutex2var_pd(lo, i3, hi);
-    // w0 s0 + w1 s1 - w2 s2 + w3 s3, left to right, no fused multiply-add: the scalar bits.
-    __m512d v = _mm512_add_pd(_mm512_mul_pd(_mm512_loadu_pd(w0 + m), s0),
-                              _mm512_mul_pd(_mm512_loadu_pd(w1 + m), s1));
-    v = _mm512_sub_pd(v, _mm512_mul_pd(_mm512_loadu_pd(w2 + m), s2));
-    v = _mm512_add_pd(v, _mm512_mul_pd(_mm512_loadu_pd(w3 + m), s3));
-    if (a.add) v = _mm512_add_pd(_mm512_loadu_pd(a.out + m), v);
-    _mm512_storeu_pd(a.out + m, v);
-  }
-  ResampleScalar(a, m);
-}
-
-bool HaveAvx512() noexcept {
-  static const bool have = __builtin_cpu_supports("avx512f");
-  return have;
-}
-#endif
 
 // mean[k] += Y_k and spread[k] += |Y_k|^2 for k < orders, Y_k = bins[k] x (edge at k = 0 and
 // k = half, else interior); complex values as interleaved (re, im) doubles. Element-wise over
@@ -125,16 +49,6 @@ void AccumulateOrders(const double* __restrict bins, std::size_t orders, std::si
     mean[2 * k + 1] += im;
     spread[k] += re * re + im * im;
   }
-}
-
-void Resample(const ResampleArgs& a) noexcept {
-#ifdef GEARPATH_RESAMPLE_AVX512
-  if (HaveAvx512()) {
-    ResampleAvx512(a);
-    return;
-  }
-#endif
-  ResampleScalar(a, 0);
 }
 
 }  // namespace
@@ -159,10 +73,14 @@ Result<SynchronousAverage> SynchronousAverage::Create(std::size_t block_length,
   stage.sample_rate_hz_ = sample_rate_hz;
   stage.max_points_ = max_points_per_revolution;
   if (one_step == OneStepPlan::kOwn) stage.plan_ = stage.MakePlan();
-  stage.hann_.resize(max_points_per_revolution);
-  for (std::size_t m = 0; m < max_points_per_revolution; ++m) {
-    stage.hann_[m] = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(m) /
-                                          static_cast<double>(max_points_per_revolution));
+  // The window of M points at hann_[M - kMinPoints] (4 + 8 + ... + M / 2 = M - 4 before it).
+  stage.hann_.resize(2 * max_points_per_revolution - kMinPoints);
+  for (std::size_t points = kMinPoints; points <= max_points_per_revolution; points *= 2) {
+    double* window = stage.hann_.data() + (points - kMinPoints);
+    for (std::size_t m = 0; m < points; ++m) {
+      window[m] = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(m) /
+                                       static_cast<double>(points));
+    }
   }
   stage.mean_scratch_.assign(max_points_per_revolution / 2 + 1, {});
   stage.average_scratch_.assign(max_points_per_revolution, 0.0);
@@ -312,7 +230,7 @@ Status SynchronousAverage::Process(std::span<const double> signal,
   std::span<double> average = forward_[PlanIndex(m_points)].real_in();
   std::fill(average.begin(), average.end(), 0.0);
   for (std::size_t r = 0; r < plan.revolutions; ++r) {
-    Resample({signal.data(), block_length_, &plan, r * m_points, m_points, average.data(), true});
+    Resample(signal.data(), block_length_, plan, r * m_points, m_points, average.data(), true);
   }
   FinishAverage(plan, out);
   return Status::Ok();
@@ -388,15 +306,15 @@ Status SynchronousAverage::ProcessWithSpread(std::span<const double> signal,
 
 // RevolutionSpread()'s work; with `average`, each resampled revolution is also added to it
 // before its window (the sum Process() accumulates, term for term).
-void SynchronousAverage::Spread(std::span<const double> signal,
-                                const SynchronousAveragePlan& plan, std::span<double> locked,
-                                std::span<double> spread, double* average) noexcept {
+void SynchronousAverage::Spread(std::span<const double> signal, const SynchronousAveragePlan& plan,
+                                std::span<double> locked, std::span<double> spread,
+                                double* average) noexcept {
   const std::size_t m_points = plan.points_per_revolution;
   const std::size_t half = m_points / 2;
   FftPlan& forward = forward_[PlanIndex(m_points)];
   const std::span<double> revolution = forward.real_in();
   const std::span<const std::complex<double>> bins = forward.complex_out();
-  const std::size_t window_step = max_points_ / m_points;
+  const double* window = hann_.data() + (m_points - kMinPoints);
   // Amplitude scaling of a Hann-windowed line: 2 / (M x the window's mean, 1/2).
   const double interior = 4.0 / static_cast<double>(m_points);
   const double edge = 2.0 / static_cast<double>(m_points);
@@ -405,12 +323,11 @@ void SynchronousAverage::Spread(std::span<const double> signal,
   std::fill(mean.begin(), mean.end(), std::complex<double>{});
   std::fill(spread.begin(), spread.end(), 0.0);
   for (std::size_t r = 0; r < plan.revolutions; ++r) {
-    Resample({signal.data(), block_length_, &plan, r * m_points, m_points, revolution.data(),
-              false});
+    Resample(signal.data(), block_length_, plan, r * m_points, m_points, revolution.data(), false);
     if (average != nullptr) {
       for (std::size_t m = 0; m < m_points; ++m) average[m] += revolution[m];
     }
-    for (std::size_t m = 0; m < m_points; ++m) revolution[m] *= hann_[m * window_step];
+    for (std::size_t m = 0; m < m_points; ++m) revolution[m] *= window[m];
     forward.Execute();
     // sum of Y and of |Y|^2 for now; DC and order M/2 take the edge scaling.
     AccumulateOrders(reinterpret_cast<const double*>(bins.data()), orders, half, interior, edge,

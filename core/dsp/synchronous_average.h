@@ -168,7 +168,7 @@ class SynchronousAverage {
   std::vector<FftPlan> forward_;
   std::vector<FftPlan> inverse_;
   SynchronousAveragePlan plan_;  // the one-step Process()'s grid (empty with OneStepPlan::kNone)
-  std::vector<double> hann_;     // periodic Hann window of max M points (M = max / s: every s-th)
+  std::vector<double> hann_;     // periodic Hann windows of 4, 8, ..., max M points, end to end
   std::vector<std::complex<double>> mean_scratch_;  // max M / 2 + 1
   std::vector<double> average_scratch_;             // max M: ProcessWithSpread's sum
 

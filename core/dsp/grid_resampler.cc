@@ -1,0 +1,179 @@
+#include "core/dsp/grid_resampler.h"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
+namespace gearpath {
+namespace {
+
+struct Job {
+  const double* x;
+  std::size_t n;
+  CubicGridView grid;  // already advanced to the first point of the job
+  std::size_t count;
+  double* out;
+  bool add;
+};
+
+inline double PointAt(const Job& j, std::size_t p) noexcept {
+  const double* s = j.x + j.grid.first[p];
+  // The same terms in the same order as ApplyCubicStencil.
+  return j.grid.w0[p] * s[0] + j.grid.w1[p] * s[1] - j.grid.w2[p] * s[2] + j.grid.w3[p] * s[3];
+}
+
+inline void PointsFrom(const Job& j, std::size_t from, std::size_t to) noexcept {
+  for (std::size_t m = from; m < to; ++m) {
+    const double v = PointAt(j, m);
+    j.out[m] = j.add ? j.out[m] + v : v;
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(GEARPATH_NO_SIMD_CLONES)
+#define GEARPATH_RESAMPLE_WIDE 1
+
+// Both wide paths rest on one fact: consecutive grid points lie at most a sample apart (M >=
+// fs / f upsamples), so a group of points reads one short window of the signal. The window is
+// loaded once and each stencil tap is picked from it in registers, instead of four scalar loads
+// per point. Groups that do not fit (a warp stretching the grid, the block's end) go point by
+// point.
+
+// Eight points at a time from a 16-sample window: two loads and four two-register permutes
+// replace 32 loads.
+__attribute__((target("avx512f"))) void ResampleAvx512(const Job& j) noexcept {
+  const __m512i one = _mm512_set1_epi64(1);
+  const __m512i last_in_window = _mm512_set1_epi64(15);
+  std::size_t m = 0;
+  for (; m + 8 <= j.count; m += 8) {
+    const std::uint32_t f0 = j.grid.first[m];
+    const __m256i f = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(j.grid.first + m));
+    const __m512i i0 = _mm512_maskz_cvtepu32_epi64(
+        0xFF, _mm256_sub_epi32(f, _mm256_set1_epi32(static_cast<int>(f0))));
+    const __m512i i1 = _mm512_add_epi64(i0, one);
+    const __m512i i2 = _mm512_add_epi64(i1, one);
+    const __m512i i3 = _mm512_add_epi64(i2, one);
+    // Every stencil inside the window (a point before f0 wraps to a huge index), and the window
+    // inside the block.
+    if (_mm512_cmpgt_epu64_mask(i3, last_in_window) != 0 || f0 + 16 > j.n) {
+      PointsFrom(j, m, m + 8);
+      continue;
+    }
+    const __m512d lo = _mm512_loadu_pd(j.x + f0);
+    const __m512d hi = _mm512_loadu_pd(j.x + f0 + 8);
+    const __m512d s0 = _mm512_permutex2var_pd(lo, i0, hi);
+    const __m512d s1 = _mm512_permutex2var_pd(lo, i1, hi);
+    const __m512d s2 = _mm512_permutex2var_pd(lo, i2, hi);
+    const __m512d s3 = _mm512_permutex2var_pd(lo, i3, hi);
+    // w0 s0 + w1 s1 - w2 s2 + w3 s3, left to right, no fused multiply-add: the scalar bits.
+    __m512d v = _mm512_add_pd(_mm512_mul_pd(_mm512_loadu_pd(j.grid.w0 + m), s0),
+                              _mm512_mul_pd(_mm512_loadu_pd(j.grid.w1 + m), s1));
+    v = _mm512_sub_pd(v, _mm512_mul_pd(_mm512_loadu_pd(j.grid.w2 + m), s2));
+    v = _mm512_add_pd(v, _mm512_mul_pd(_mm512_loadu_pd(j.grid.w3 + m), s3));
+    if (j.add) v = _mm512_add_pd(_mm512_loadu_pd(j.out + m), v);
+    _mm512_storeu_pd(j.out + m, v);
+  }
+  PointsFrom(j, m, j.count);
+}
+
+// Four points at a time from an 8-sample window (two 4-sample registers). AVX2 has no
+// two-register permute of doubles: each tap is picked from both halves by a 32-bit permute
+// (whose index uses only its low three bits, so one index serves both halves) and the half is
+// chosen by a blend.
+// Tap t of four points from the window (lo, hi): sample offset + t lies in hi when offset + t >=
+// 4, i.e. offset > 3 - t.
+__attribute__((target("avx2"), always_inline)) inline __m256d PickTap(__m256i lo, __m256i hi,
+                                                                      __m256i index, __m256i offset,
+                                                                      std::int64_t t) noexcept {
+  const __m256d upper = _mm256_castsi256_pd(_mm256_cmpgt_epi64(offset, _mm256_set1_epi64x(3 - t)));
+  return _mm256_blendv_pd(_mm256_castsi256_pd(_mm256_permutevar8x32_epi32(lo, index)),
+                          _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(hi, index)), upper);
+}
+
+__attribute__((target("avx2"))) void ResampleAvx2(const Job& j) noexcept {
+  // Locals, so that the stores to out are not taken to move the job's pointers.
+  const double* const x = j.x;
+  const std::uint32_t* const first = j.grid.first;
+  const double* const w0 = j.grid.w0;
+  const double* const w1 = j.grid.w1;
+  const double* const w2 = j.grid.w2;
+  const double* const w3 = j.grid.w3;
+  double* const out = j.out;
+  const bool add = j.add;
+  const __m128i max_offset = _mm_set1_epi32(4);  // the last stencil ends at window sample 7
+  // Per 64-bit lane: the 32-bit indices (2 i, 2 i + 1) of double i; one tap further is + 2 each.
+  const __m256i pair_base = _mm256_set1_epi64x(std::int64_t{1} << 32);
+  const __m256i next_tap = _mm256_set1_epi64x((std::int64_t{2} << 32) | 2);
+  std::size_t m = 0;
+  for (; m + 4 <= j.count; m += 4) {
+    const std::uint32_t f0 = first[m];
+    const __m128i f = _mm_loadu_si128(reinterpret_cast<const __m128i*>(first + m));
+    const __m128i d = _mm_sub_epi32(f, _mm_set1_epi32(static_cast<int>(f0)));
+    // Every offset at most 4 (unsigned: a point before f0 wraps to a huge one), and the window
+    // inside the block.
+    const __m128i fits = _mm_cmpeq_epi32(_mm_max_epu32(d, max_offset), max_offset);
+    if (_mm_movemask_epi8(fits) != 0xFFFF || f0 + 8 > j.n) {
+      PointsFrom(j, m, m + 4);
+      continue;
+    }
+    const __m256i offset = _mm256_cvtepu32_epi64(d);  // the tap-0 sample of each point, 0..4
+    const __m256i lo = _mm256_castpd_si256(_mm256_loadu_pd(x + f0));
+    const __m256i hi = _mm256_castpd_si256(_mm256_loadu_pd(x + f0 + 4));
+    // Tap 0's indices: offset * 2 in both halves of the lane, + 1 in the upper one.
+    const __m256i twice = _mm256_add_epi64(offset, offset);
+    const __m256i index0 =
+        _mm256_add_epi64(_mm256_or_si256(twice, _mm256_slli_epi64(twice, 32)), pair_base);
+    const __m256i index1 = _mm256_add_epi64(index0, next_tap);
+    const __m256i index2 = _mm256_add_epi64(index1, next_tap);
+    const __m256i index3 = _mm256_add_epi64(index2, next_tap);
+    const __m256d s0 = PickTap(lo, hi, index0, offset, 0);
+    const __m256d s1 = PickTap(lo, hi, index1, offset, 1);
+    const __m256d s2 = PickTap(lo, hi, index2, offset, 2);
+    const __m256d s3 = PickTap(lo, hi, index3, offset, 3);
+    // w0 s0 + w1 s1 - w2 s2 + w3 s3, left to right, no fused multiply-add: the scalar bits.
+    __m256d v = _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(w0 + m), s0),
+                              _mm256_mul_pd(_mm256_loadu_pd(w1 + m), s1));
+    v = _mm256_sub_pd(v, _mm256_mul_pd(_mm256_loadu_pd(w2 + m), s2));
+    v = _mm256_add_pd(v, _mm256_mul_pd(_mm256_loadu_pd(w3 + m), s3));
+    if (add) v = _mm256_add_pd(_mm256_loadu_pd(out + m), v);
+    _mm256_storeu_pd(out + m, v);
+  }
+  PointsFrom(j, m, j.count);
+}
+
+enum class Wide { kNone, kAvx2, kAvx512 };
+
+Wide WidestSupported() noexcept {
+  static const Wide wide = __builtin_cpu_supports("avx512f") ? Wide::kAvx512
+                           : __builtin_cpu_supports("avx2")  ? Wide::kAvx2
+                                                             : Wide::kNone;
+  return wide;
+}
+#endif
+
+}  // namespace
+
+void ResampleOnGrid(const double* x, std::size_t n, const CubicGridView& grid, std::size_t begin,
+                    std::size_t count, double* out, bool add) noexcept {
+  const Job j{
+      x,
+      n,
+      {grid.first + begin, grid.w0 + begin, grid.w1 + begin, grid.w2 + begin, grid.w3 + begin},
+      count,
+      out,
+      add};
+#ifdef GEARPATH_RESAMPLE_WIDE
+  switch (WidestSupported()) {
+    case Wide::kAvx512:
+      ResampleAvx512(j);
+      return;
+    case Wide::kAvx2:
+      ResampleAvx2(j);
+      return;
+    case Wide::kNone:
+      break;
+  }
+#endif
+  PointsFrom(j, 0, count);
+}
+
+}  // namespace gearpath
