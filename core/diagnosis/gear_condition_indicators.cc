@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include "core/common/simd_clones.h"
+
 namespace gearpath {
 namespace {
 
@@ -38,23 +40,98 @@ struct Moments {
   double m8 = 0.0;
 };
 
+// Partial sums in eight lanes in a fixed order, added up at the end: element-wise over the lanes,
+// so the compiler vectorises the sums and every clone rounds alike (simd_clones.h).
+constexpr std::size_t kLanes = 8;
+
+// The sum, least and largest value of x (n >= 1, finite).
+struct SumRange {
+  double sum = 0.0;
+  double lo = 0.0;
+  double hi = 0.0;
+};
+
+GEARPATH_SIMD_CLONES
+SumRange SumAndRange(const double* __restrict x, std::size_t n) noexcept {
+  double sum[kLanes] = {};
+  double lo[kLanes], hi[kLanes];
+  for (std::size_t k = 0; k < kLanes; ++k) lo[k] = hi[k] = x[0];
+  std::size_t i = 0;
+  for (; i + kLanes <= n; i += kLanes) {
+    for (std::size_t k = 0; k < kLanes; ++k) {
+      sum[k] += x[i + k];
+      lo[k] = x[i + k] < lo[k] ? x[i + k] : lo[k];
+      hi[k] = x[i + k] > hi[k] ? x[i + k] : hi[k];
+    }
+  }
+  for (std::size_t k = 0; i < n; ++i, ++k) {
+    sum[k] += x[i];
+    lo[k] = x[i] < lo[k] ? x[i] : lo[k];
+    hi[k] = x[i] > hi[k] ? x[i] : hi[k];
+  }
+  SumRange r{0.0, lo[0], hi[0]};
+  for (std::size_t k = 0; k < kLanes; ++k) {
+    r.sum += sum[k];
+    r.lo = std::min(r.lo, lo[k]);
+    r.hi = std::max(r.hi, hi[k]);
+  }
+  return r;
+}
+
+// The central moments 2, 4, 6, 8 about `mean` (1/N normalised), or only the second without
+// `higher`.
+GEARPATH_SIMD_CLONES
+void CentralSums(const double* __restrict x, std::size_t n, double mean, bool higher,
+                 Moments& m) noexcept {
+  double s2[kLanes] = {}, s4[kLanes] = {}, s6[kLanes] = {}, s8[kLanes] = {};
+  std::size_t i = 0;
+  if (higher) {
+    for (; i + kLanes <= n; i += kLanes) {
+      for (std::size_t k = 0; k < kLanes; ++k) {
+        const double d2 = (x[i + k] - mean) * (x[i + k] - mean);
+        const double d4 = d2 * d2;
+        s2[k] += d2;
+        s4[k] += d4;
+        s6[k] += d4 * d2;
+        s8[k] += d4 * d4;
+      }
+    }
+  } else {
+    for (; i + kLanes <= n; i += kLanes) {
+      for (std::size_t k = 0; k < kLanes; ++k) s2[k] += (x[i + k] - mean) * (x[i + k] - mean);
+    }
+  }
+  for (std::size_t k = 0; i < n; ++i, ++k) {
+    const double d2 = (x[i] - mean) * (x[i] - mean);
+    const double d4 = d2 * d2;
+    s2[k] += d2;
+    s4[k] += d4;
+    s6[k] += d4 * d2;
+    s8[k] += d4 * d4;
+  }
+  m.m2 = m.m4 = m.m6 = m.m8 = 0.0;
+  for (std::size_t k = 0; k < kLanes; ++k) {
+    m.m2 += s2[k];
+    m.m4 += s4[k];
+    m.m6 += s6[k];
+    m.m8 += s8[k];
+  }
+  const double inv_n = 1.0 / static_cast<double>(n);
+  m.m2 *= inv_n;
+  if (higher) {
+    m.m4 *= inv_n;
+    m.m6 *= inv_n;
+    m.m8 *= inv_n;
+  } else {
+    m.m4 = m.m6 = m.m8 = 0.0;
+  }
+}
+
+// Mean and central moments of x.
 Moments CentralMoments(std::span<const double> x) noexcept {
   Moments m;
-  const double n = static_cast<double>(x.size());
-  for (double v : x) m.mean += v;
-  m.mean /= n;
-  for (double v : x) {
-    const double d2 = (v - m.mean) * (v - m.mean);
-    const double d4 = d2 * d2;
-    m.m2 += d2;
-    m.m4 += d4;
-    m.m6 += d4 * d2;
-    m.m8 += d4 * d4;
-  }
-  m.m2 /= n;
-  m.m4 /= n;
-  m.m6 /= n;
-  m.m8 /= n;
+  m.mean = SumAndRange(x.data(), x.size()).sum / static_cast<double>(x.size());
+  CentralSums(x.data(), x.size(), m.mean, /*higher=*/true, m);
   return m;
 }
 
@@ -275,16 +352,19 @@ Status GearConditionIndicators::Compute(std::span<const double> tsa,
   for (std::size_t k = 1; k <= low_orders; ++k) role[k] |= kShaftLine;
   const auto is_regular = [&](std::size_t k) { return (role[k] & (kMeshLine | kShaftLine)) != 0; };
   // Contribution of line k to the mean square (DC and order M/2 appear once, real).
-  const auto energy = [&](std::size_t k) {
+  const auto energy = [&](std::size_t k) __attribute__((always_inline)) {
     return k == half ? orders[k].real() * orders[k].real() : 0.5 * std::norm(orders[k]);
   };
 
   // ---- The TSA itself.
-  const Moments whole = CentralMoments(tsa);
+  // Its variance, range and mean; no higher moment.
+  const SumRange range = SumAndRange(tsa.data(), m_points);
+  Moments whole;
+  whole.mean = range.sum / static_cast<double>(m_points);
+  CentralSums(tsa.data(), m_points, whole.mean, /*higher=*/false, whole);
   const double tsa_rms = std::sqrt(whole.m2);
-  const auto [lo, hi] = std::minmax_element(tsa.begin(), tsa.end());
-  const double peak_to_peak = *hi - *lo;
-  const double crest = Ratio(std::max(*hi - whole.mean, whole.mean - *lo), tsa_rms);
+  const double peak_to_peak = range.hi - range.lo;
+  const double crest = Ratio(std::max(range.hi - whole.mean, whole.mean - range.lo), tsa_rms);
   const double zero_variance = kZeroVarianceFraction * whole.m2;
 
   // ---- Line sums.
@@ -294,12 +374,14 @@ Status GearConditionIndicators::Compute(std::span<const double> tsa,
   double high_energy = 0.0;
   for (std::size_t k = 1; k <= half; ++k) {
     if ((role[k] & kMeshLine) != 0) mesh_amplitude_sum += std::abs(orders[k]);
+    const double e = energy(k);
     if (is_regular(k)) {
-      regular_energy += energy(k);
-      continue;
+      regular_energy += e;
+    } else if (2 * k < z_min) {
+      low_energy += e;
+    } else if (k > z_max) {
+      high_energy += e;
     }
-    if (2 * k < z_min) low_energy += energy(k);
-    if (k > z_max) high_energy += energy(k);
   }
   // F ratio of the low band: the power locked to the shaft against what the unlocked content of
   // R revolutions leaves in their mean (spread / (R - 1) per order). Noise, or a burst in some
