@@ -16,10 +16,16 @@ namespace {
 constexpr const char* kStage = "kurtogram";
 constexpr int kMaxDepth = 12;
 
-std::size_t NextPowerOfTwo(std::size_t n) {
-  std::size_t p = 1;
-  while (p < n) p <<= 1;
-  return p;
+// The smallest 2^a or 3 x 2^a >= n. A band's moments are exact at any length of at least twice
+// its bins (kurtogram.h), so the length is free; a power of two alone would be up to twice as
+// long, and the ternary rows' bands (a third of the bins) are where that bites: 5334 -> 6144
+// points, not 8192.
+std::size_t NextFftLength(std::size_t n) {
+  std::size_t two = 1;
+  while (two < n) two <<= 1;
+  std::size_t three = 3;
+  while (three < n) three <<= 1;
+  return std::min(two, three);
 }
 
 // Lags handled together by Autocorrelation (one vector of doubles on AVX-512).
@@ -180,7 +186,7 @@ Result<Kurtogram> Kurtogram::Create(std::size_t block_length, double sample_rate
     }
     // Rows only get narrower: the first row that fails ends the tree.
     if (bandwidth < options.min_bandwidth_hz || narrowest < kMinBinsPerBand) break;
-    const std::size_t size = NextPowerOfTwo(2 * widest);
+    const std::size_t size = NextFftLength(2 * widest);
     auto found = std::find(plan_sizes.begin(), plan_sizes.end(), size);
     Row row{node, static_cast<std::size_t>(found - plan_sizes.begin())};
     if (found == plan_sizes.end()) {
