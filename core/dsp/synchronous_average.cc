@@ -188,13 +188,26 @@ Status SynchronousAverage::Process(std::span<const double> signal, double shaft_
   return Process(signal, plan_, out);
 }
 
-Status SynchronousAverage::CheckSignal(std::span<const double> signal,
-                                       const SynchronousAveragePlan& plan) const noexcept {
-  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
+Status SynchronousAverage::CheckPlan(const SynchronousAveragePlan& plan) noexcept {
   if (plan.points_per_revolution == 0) {
     return Error{std::string(kStage) + ": the plan holds no grid (Plan() failed or never ran)"};
   }
+  return Status::Ok();
+}
+
+Status SynchronousAverage::CheckSignal(std::span<const double> signal,
+                                       const SynchronousAveragePlan& plan) const noexcept {
+  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
+  if (Status s = CheckPlan(plan); !s) return s;
   return dsp_detail::CheckFinite(kStage, "signal", signal);
+}
+
+Result<CheckedSignal> SynchronousAverage::Check(std::span<const double> signal) const noexcept {
+  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) {
+    return Error{s.error()};
+  }
+  if (Status s = dsp_detail::CheckFinite(kStage, "signal", signal); !s) return Error{s.error()};
+  return CheckedSignal(signal);
 }
 
 Status SynchronousAverage::CheckRecord(const SynchronousAverageRecord& out) const noexcept {
@@ -224,8 +237,15 @@ Status SynchronousAverage::Process(std::span<const double> signal,
                                    const SynchronousAveragePlan& plan,
                                    SynchronousAverageRecord& out) noexcept {
   if (Status s = CheckSignal(signal, plan); !s) return s;
+  return Process(CheckedSignal(signal), plan, out);
+}
+
+Status SynchronousAverage::Process(const CheckedSignal& checked, const SynchronousAveragePlan& plan,
+                                   SynchronousAverageRecord& out) noexcept {
+  if (Status s = CheckPlan(plan); !s) return s;
   if (Status s = CheckRecord(out); !s) return s;
   // Angular resampling and averaging, accumulated in the forward plan's input.
+  const std::span<const double> signal = checked.values();
   const std::size_t m_points = plan.points_per_revolution;
   std::span<double> average = forward_[PlanIndex(m_points)].real_in();
   std::fill(average.begin(), average.end(), 0.0);
@@ -293,11 +313,20 @@ Status SynchronousAverage::ProcessWithSpread(std::span<const double> signal,
                                              std::span<double> locked,
                                              std::span<double> spread) noexcept {
   if (Status s = CheckSignal(signal, plan); !s) return s;
+  return ProcessWithSpread(CheckedSignal(signal), plan, out, locked, spread);
+}
+
+Status SynchronousAverage::ProcessWithSpread(const CheckedSignal& checked,
+                                             const SynchronousAveragePlan& plan,
+                                             SynchronousAverageRecord& out,
+                                             std::span<double> locked,
+                                             std::span<double> spread) noexcept {
+  if (Status s = CheckPlan(plan); !s) return s;
   if (Status s = CheckRecord(out); !s) return s;
   if (Status s = CheckSpreadSpans(plan, locked, spread); !s) return s;
   std::span<double> average(average_scratch_.data(), plan.points_per_revolution);
   std::fill(average.begin(), average.end(), 0.0);
-  Spread(signal, plan, locked, spread, average.data());
+  Spread(checked.values(), plan, locked, spread, average.data());
   std::span<double> in = forward_[PlanIndex(plan.points_per_revolution)].real_in();
   std::copy(average.begin(), average.end(), in.begin());
   FinishAverage(plan, out);

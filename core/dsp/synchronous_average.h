@@ -95,6 +95,19 @@ struct SynchronousAveragePlan {
   std::vector<double> w0, w1, w2, w3;
 };
 
+// A block signal that SynchronousAverage::Check() found the right length and finite: averaging
+// one signal at several rates scans it once, not once per rate. Only the stage makes one, and it
+// views the caller's samples, which must not change while it is used.
+class CheckedSignal {
+ public:
+  std::span<const double> values() const noexcept { return values_; }
+
+ private:
+  friend class SynchronousAverage;
+  explicit CheckedSignal(std::span<const double> values) noexcept : values_(values) {}
+  std::span<const double> values_;
+};
+
 class SynchronousAverage {
  public:
   // Whether the stage keeps a grid of its own for the one-step Process(signal, shaft_hz, ...):
@@ -138,6 +151,13 @@ class SynchronousAverage {
   Status Process(std::span<const double> signal, const SynchronousAveragePlan& plan,
                  SynchronousAverageRecord& out) noexcept;
 
+  // The signal checks of Process(signal, plan, out), done once: the overloads below that take
+  // the result skip them (and still check the plan, the record and the spans). No allocation on
+  // success.
+  Result<CheckedSignal> Check(std::span<const double> signal) const noexcept;
+  Status Process(const CheckedSignal& signal, const SynchronousAveragePlan& plan,
+                 SynchronousAverageRecord& out) noexcept;
+
   // How much of each order is locked to the shaft, from each revolution's own spectrum Y_{k,r}
   // (a Hann window over the revolution, so that strong lines that are not locked, such as
   // another shaft's mesh tones or a drifting one, do not leak across the low orders; amplitude-
@@ -157,6 +177,9 @@ class SynchronousAverage {
   Status ProcessWithSpread(std::span<const double> signal, const SynchronousAveragePlan& plan,
                            SynchronousAverageRecord& out, std::span<double> locked,
                            std::span<double> spread) noexcept;
+  Status ProcessWithSpread(const CheckedSignal& signal, const SynchronousAveragePlan& plan,
+                           SynchronousAverageRecord& out, std::span<double> locked,
+                           std::span<double> spread) noexcept;
 
  private:
   SynchronousAverage() = default;
@@ -173,9 +196,10 @@ class SynchronousAverage {
   std::vector<double> average_scratch_;             // max M: ProcessWithSpread's sum
 
   // Input checks shared by the two-step Process, RevolutionSpread and ProcessWithSpread (the
-  // signal is scanned once per call).
+  // signal is scanned once per call, or once per Check()).
   Status CheckSignal(std::span<const double> signal,
                      const SynchronousAveragePlan& plan) const noexcept;
+  static Status CheckPlan(const SynchronousAveragePlan& plan) noexcept;
   Status CheckRecord(const SynchronousAverageRecord& out) const noexcept;
   Status CheckSpreadSpans(const SynchronousAveragePlan& plan, std::span<const double> locked,
                           std::span<const double> spread) const noexcept;

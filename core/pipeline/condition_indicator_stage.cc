@@ -308,14 +308,15 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
     plan_ok_[g] = cw.tsa->Plan(m.rate_groups[g].ratio * w.speed_hz, cw.plans[g], warp).ok() ? 1 : 0;
   }
   for (std::size_t sig = 0; sig < m.condition_signals.size(); ++sig) {
-    const std::span<const double> signal = SignalOf(ctx, sig);
+    // Checked once for all its rate groups; a signal that fails leaves its slots invalid.
+    const Result<CheckedSignal> signal = cw.tsa->Check(SignalOf(ctx, sig));
     for (std::size_t g = 0; g < groups; ++g) {
       const std::size_t slot = sig * groups + g;
       const ConditionSlot& cs = m.condition_slots[slot];
       const RateGroup& rg = m.rate_groups[g];
       const double shaft_hz = rg.ratio * w.speed_hz;
       w.slot_shaft_hz[slot] = shaft_hz;
-      if (!plan_ok_[g]) continue;
+      if (!plan_ok_[g] || !signal.ok()) continue;
       // The revolutions' spread (for the synchronous ratios) costs R more FFTs: measured
       // channels only (the contributions are built from them; the forces are not scored).
       RevolutionSpreadView spread;
@@ -323,11 +324,12 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
         const std::size_t orders = cw.plans[g].points_per_revolution / 2 + 1;
         const std::span<double> locked(cw.locked_power.data(), orders);
         const std::span<double> between(cw.spread_power.data(), orders);
-        if (!cw.tsa->ProcessWithSpread(signal, cw.plans[g], cw.record, locked, between).ok()) {
+        if (!cw.tsa->ProcessWithSpread(signal.value(), cw.plans[g], cw.record, locked, between)
+                 .ok()) {
           continue;
         }
         spread = {locked, between, cw.record.revolutions, cw.record.nyquist_order};
-      } else if (!cw.tsa->Process(signal, cw.plans[g], cw.record).ok()) {
+      } else if (!cw.tsa->Process(signal.value(), cw.plans[g], cw.record).ok()) {
         continue;
       }
       const double na4_reference =

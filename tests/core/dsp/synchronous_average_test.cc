@@ -347,8 +347,7 @@ TEST(SynchronousAverageRevolutionSpread, ProcessWithSpreadIsBitIdenticalToTheTwo
     const std::vector<double> x = dsp_test::WhiteNoise(kN, 1.0, warped ? 7u : 8u);
     SynchronousAverageRecord apart = stage.MakeRecord();
     SynchronousAverageRecord fused = stage.MakeRecord();
-    std::vector<double> locked(orders), spread(orders), fused_locked(orders),
-        fused_spread(orders);
+    std::vector<double> locked(orders), spread(orders), fused_locked(orders), fused_spread(orders);
     ASSERT_TRUE(stage.Process(x, plan, apart).ok());
     ASSERT_TRUE(stage.RevolutionSpread(x, plan, locked, spread).ok());
     const Status s = stage.ProcessWithSpread(x, plan, fused, fused_locked, fused_spread);
@@ -390,6 +389,51 @@ TEST(SynchronousAverageRevolutionSpread, RejectsSpansOfWrongSizesAndPlansWithout
   nan[7] = std::nan("");
   EXPECT_FALSE(stage.RevolutionSpread(nan, plan, a, b).ok());
   EXPECT_TRUE(stage.RevolutionSpread(x, plan, a, b).ok());
+}
+
+// A signal checked once serves every rate: the checked overloads give the bits of the span ones,
+// and what Check() refuses (a wrong length, a non-finite sample) is named as Process() names it.
+TEST(SynchronousAverageCheckedSignal, ServesEveryRateWithTheBitsOfTheSpanCalls) {
+  constexpr std::size_t kN = 8000;
+  auto stage = SynchronousAverage::Create(kN, kFs, 4096).value();
+  const std::vector<double> x = dsp_test::WhiteNoise(kN, 1.0, 21);
+  const Result<CheckedSignal> checked = stage.Check(x);
+  ASSERT_TRUE(checked.ok()) << checked.error();
+  for (const double shaft_hz : {kShaftHz, 0.61 * kShaftHz, 2.3 * kShaftHz}) {
+    SynchronousAveragePlan plan = stage.MakePlan();
+    ASSERT_TRUE(stage.Plan(shaft_hz, plan).ok());
+    const std::size_t orders = plan.points_per_revolution / 2 + 1;
+    SynchronousAverageRecord by_span = stage.MakeRecord();
+    SynchronousAverageRecord by_check = stage.MakeRecord();
+    ASSERT_TRUE(stage.Process(x, plan, by_span).ok());
+    ASSERT_TRUE(stage.Process(checked.value(), plan, by_check).ok());
+    for (std::size_t m = 0; m < by_span.tsa().size(); ++m) {
+      ASSERT_EQ(by_check.tsa()[m], by_span.tsa()[m]) << shaft_hz << " Hz, point " << m;
+    }
+    std::vector<double> locked(orders), spread(orders), checked_locked(orders),
+        checked_spread(orders);
+    ASSERT_TRUE(stage.ProcessWithSpread(x, plan, by_span, locked, spread).ok());
+    ASSERT_TRUE(
+        stage.ProcessWithSpread(checked.value(), plan, by_check, checked_locked, checked_spread)
+            .ok());
+    for (std::size_t k = 0; k < orders; ++k) {
+      ASSERT_EQ(by_check.orders()[k], by_span.orders()[k]) << shaft_hz << " Hz, order " << k;
+      ASSERT_EQ(checked_locked[k], locked[k]) << shaft_hz << " Hz, order " << k;
+      ASSERT_EQ(checked_spread[k], spread[k]) << shaft_hz << " Hz, order " << k;
+    }
+  }
+  std::vector<double> nan = x;
+  nan[4321] = std::numeric_limits<double>::infinity();
+  const Result<CheckedSignal> refused = stage.Check(nan);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().find("4321"), std::string::npos) << refused.error();
+  EXPECT_FALSE(stage.Check(std::vector<double>(kN - 1, 0.0)).ok());
+  // The plan and the record are still checked on a checked signal.
+  SynchronousAveragePlan none = stage.MakePlan();
+  SynchronousAverageRecord out = stage.MakeRecord();
+  const Status no_grid = stage.Process(checked.value(), none, out);
+  ASSERT_FALSE(no_grid.ok());
+  EXPECT_NE(no_grid.error().find("plan holds no grid"), std::string::npos) << no_grid.error();
 }
 
 }  // namespace
