@@ -1,5 +1,7 @@
 #include "core/dsp/grid_resampler.h"
 
+#include <cstdint>
+
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #endif
@@ -75,10 +77,6 @@ __attribute__((target("avx512f"))) void ResampleAvx512(const Job& j) noexcept {
   PointsFrom(j, m, j.count);
 }
 
-// Four points at a time from an 8-sample window (two 4-sample registers). AVX2 has no
-// two-register permute of doubles: each tap is picked from both halves by a 32-bit permute
-// (whose index uses only its low three bits, so one index serves both halves) and the half is
-// chosen by a blend.
 // Tap t of four points from the window (lo, hi): sample offset + t lies in hi when offset + t >=
 // 4, i.e. offset > 3 - t.
 __attribute__((target("avx2"), always_inline)) inline __m256d PickTap(__m256i lo, __m256i hi,
@@ -89,6 +87,10 @@ __attribute__((target("avx2"), always_inline)) inline __m256d PickTap(__m256i lo
                           _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(hi, index)), upper);
 }
 
+// Four points at a time from an 8-sample window (two 4-sample registers). AVX2 has no
+// two-register permute of doubles: each tap is picked from both halves by a 32-bit permute
+// (whose index uses only its low three bits, so one index serves both halves) and the half is
+// chosen by a blend.
 __attribute__((target("avx2"))) void ResampleAvx2(const Job& j) noexcept {
   // Locals, so that the stores to out are not taken to move the job's pointers.
   const double* const x = j.x;
