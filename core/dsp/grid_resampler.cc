@@ -34,14 +34,10 @@ inline void PointsFrom(const Job& j, std::size_t from, std::size_t to) noexcept 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(GEARPATH_NO_SIMD_CLONES)
 #define GEARPATH_RESAMPLE_WIDE 1
 
-// Both wide paths rest on one fact: consecutive grid points lie at most a sample apart (M >=
-// fs / f upsamples), so a group of points reads one short window of the signal. The window is
-// loaded once and each stencil tap is picked from it in registers, instead of four scalar loads
-// per point. Groups that do not fit (a warp stretching the grid, the block's end) go point by
-// point.
-
-// Eight points at a time from a 16-sample window: two loads and four two-register permutes
-// replace 32 loads.
+// Eight points at a time from one 16-sample window: consecutive grid points lie at most a sample
+// apart (M >= fs / f upsamples), so eight points read one short stretch of the signal, and two
+// loads and four two-register permutes replace 32 loads. Groups that do not fit (a warp
+// stretching the grid, the block's end) go point by point.
 __attribute__((target("avx512f"))) void ResampleAvx512(const Job& j) noexcept {
   const __m512i one = _mm512_set1_epi64(1);
   const __m512i last_in_window = _mm512_set1_epi64(15);
@@ -77,20 +73,11 @@ __attribute__((target("avx512f"))) void ResampleAvx512(const Job& j) noexcept {
   PointsFrom(j, m, j.count);
 }
 
-// Tap t of four points from the window (lo, hi): sample offset + t lies in hi when offset + t >=
-// 4, i.e. offset > 3 - t.
-__attribute__((target("avx2"), always_inline)) inline __m256d PickTap(__m256i lo, __m256i hi,
-                                                                      __m256i index, __m256i offset,
-                                                                      std::int64_t t) noexcept {
-  const __m256d upper = _mm256_castsi256_pd(_mm256_cmpgt_epi64(offset, _mm256_set1_epi64x(3 - t)));
-  return _mm256_blendv_pd(_mm256_castsi256_pd(_mm256_permutevar8x32_epi32(lo, index)),
-                          _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(hi, index)), upper);
-}
-
-// Four points at a time from an 8-sample window (two 4-sample registers). AVX2 has no
-// two-register permute of doubles: each tap is picked from both halves by a 32-bit permute
-// (whose index uses only its low three bits, so one index serves both halves) and the half is
-// chosen by a blend.
+// Four points at a time, each point's four samples one unaligned load (its stencil always lies
+// inside the block), transposed in registers so that tap t of the four points is one vector.
+// Unlike a window shared by the group, this needs no fit test and no scalar fallback, and a
+// 4 x 4 transpose is eight shuffles where picking taps from a window with AVX2's 32-bit permutes
+// took twelve and their index arithmetic.
 __attribute__((target("avx2"))) void ResampleAvx2(const Job& j) noexcept {
   // Locals, so that the stores to out are not taken to move the job's pointers.
   const double* const x = j.x;
@@ -101,36 +88,20 @@ __attribute__((target("avx2"))) void ResampleAvx2(const Job& j) noexcept {
   const double* const w3 = j.grid.w3;
   double* const out = j.out;
   const bool add = j.add;
-  const __m128i max_offset = _mm_set1_epi32(4);  // the last stencil ends at window sample 7
-  // Per 64-bit lane: the 32-bit indices (2 i, 2 i + 1) of double i; one tap further is + 2 each.
-  const __m256i pair_base = _mm256_set1_epi64x(std::int64_t{1} << 32);
-  const __m256i next_tap = _mm256_set1_epi64x((std::int64_t{2} << 32) | 2);
   std::size_t m = 0;
   for (; m + 4 <= j.count; m += 4) {
-    const std::uint32_t f0 = first[m];
-    const __m128i f = _mm_loadu_si128(reinterpret_cast<const __m128i*>(first + m));
-    const __m128i d = _mm_sub_epi32(f, _mm_set1_epi32(static_cast<int>(f0)));
-    // Every offset at most 4 (unsigned: a point before f0 wraps to a huge one), and the window
-    // inside the block.
-    const __m128i fits = _mm_cmpeq_epi32(_mm_max_epu32(d, max_offset), max_offset);
-    if (_mm_movemask_epi8(fits) != 0xFFFF || f0 + 8 > j.n) {
-      PointsFrom(j, m, m + 4);
-      continue;
-    }
-    const __m256i offset = _mm256_cvtepu32_epi64(d);  // the tap-0 sample of each point, 0..4
-    const __m256i lo = _mm256_castpd_si256(_mm256_loadu_pd(x + f0));
-    const __m256i hi = _mm256_castpd_si256(_mm256_loadu_pd(x + f0 + 4));
-    // Tap 0's indices: offset * 2 in both halves of the lane, + 1 in the upper one.
-    const __m256i twice = _mm256_add_epi64(offset, offset);
-    const __m256i index0 =
-        _mm256_add_epi64(_mm256_or_si256(twice, _mm256_slli_epi64(twice, 32)), pair_base);
-    const __m256i index1 = _mm256_add_epi64(index0, next_tap);
-    const __m256i index2 = _mm256_add_epi64(index1, next_tap);
-    const __m256i index3 = _mm256_add_epi64(index2, next_tap);
-    const __m256d s0 = PickTap(lo, hi, index0, offset, 0);
-    const __m256d s1 = PickTap(lo, hi, index1, offset, 1);
-    const __m256d s2 = PickTap(lo, hi, index2, offset, 2);
-    const __m256d s3 = PickTap(lo, hi, index3, offset, 3);
+    const __m256d a = _mm256_loadu_pd(x + first[m]);
+    const __m256d b = _mm256_loadu_pd(x + first[m + 1]);
+    const __m256d c = _mm256_loadu_pd(x + first[m + 2]);
+    const __m256d d = _mm256_loadu_pd(x + first[m + 3]);
+    const __m256d ab_even = _mm256_unpacklo_pd(a, b);  // a0 b0 a2 b2
+    const __m256d ab_odd = _mm256_unpackhi_pd(a, b);   // a1 b1 a3 b3
+    const __m256d cd_even = _mm256_unpacklo_pd(c, d);  // c0 d0 c2 d2
+    const __m256d cd_odd = _mm256_unpackhi_pd(c, d);   // c1 d1 c3 d3
+    const __m256d s0 = _mm256_permute2f128_pd(ab_even, cd_even, 0x20);
+    const __m256d s1 = _mm256_permute2f128_pd(ab_odd, cd_odd, 0x20);
+    const __m256d s2 = _mm256_permute2f128_pd(ab_even, cd_even, 0x31);
+    const __m256d s3 = _mm256_permute2f128_pd(ab_odd, cd_odd, 0x31);
     // w0 s0 + w1 s1 - w2 s2 + w3 s3, left to right, no fused multiply-add: the scalar bits.
     __m256d v = _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(w0 + m), s0),
                               _mm256_mul_pd(_mm256_loadu_pd(w1 + m), s1));
