@@ -99,6 +99,15 @@ Result<OrderTracker> OrderTracker::Create(std::size_t block_length, double sampl
   t.phase_.assign(block_length, 0.0);
   t.weight_.assign(block_length, 0.0);
   t.next_.assign(block_length, 0.0);
+  const auto terms = static_cast<std::size_t>(options.degree + 1);
+  const std::size_t chunks = (block_length + kLegendreLanes - 1) / kLegendreLanes;
+  t.legendre_.resize(chunks * terms * kLegendreLanes);
+  LegendreChunk p{};
+  for (std::size_t c = 0; c < chunks; ++c) {
+    Legendre(c * kLegendreLanes, static_cast<double>(block_length - 1), options.degree, p);
+    std::copy_n(p.begin(), terms * kLegendreLanes,
+                t.legendre_.begin() + static_cast<std::ptrdiff_t>(c * terms * kLegendreLanes));
+  }
   return t;
 }
 
@@ -227,13 +236,13 @@ Result<OrderTrackResult> OrderTracker::Run(std::span<const double> signal, doubl
     Vector rhs = Vector::Zero();
     double weight_sum = 0.0;
     const int terms = degree + 1;
-    LegendreChunk p{};
+    const auto chunk_size = static_cast<std::size_t>(terms) * kLegendreLanes;
     for (std::size_t i0 = 0; i0 < n_; i0 += kLegendreLanes) {
       const std::size_t lanes = std::min(kLegendreLanes, n_ - i0);
       bool any = false;
       for (std::size_t j = 0; j < lanes; ++j) any = any || weight_[i0 + j] != 0.0;
       if (!any) continue;
-      Legendre(i0, last, degree, p);
+      const double* p = legendre_.data() + (i0 / kLegendreLanes) * chunk_size;
       for (std::size_t j = 0; j < lanes; ++j) {
         const double w = weight_[i0 + j];
         if (w == 0.0) continue;
@@ -272,11 +281,11 @@ Result<OrderTrackResult> OrderTracker::Run(std::span<const double> signal, doubl
     std::array<double, kLegendreLanes> fit{};
     for (std::size_t i0 = 0; i0 < n_; i0 += kLegendreLanes) {
       const std::size_t lanes = std::min(kLegendreLanes, n_ - i0);
-      Legendre(i0, last, degree, p);
+      const double* p = legendre_.data() + (i0 / kLegendreLanes) * chunk_size;
       fit.fill(0.0);
       for (int a = 0; a < terms; ++a) {
         const double c = coef(a);
-        const double* pa = p.data() + static_cast<std::size_t>(a) * kLegendreLanes;
+        const double* pa = p + static_cast<std::size_t>(a) * kLegendreLanes;
         for (std::size_t j = 0; j < kLegendreLanes; ++j) fit[j] += c * pa[j];
       }
       for (std::size_t j = 0; j < lanes; ++j) {
