@@ -195,13 +195,6 @@ Status SynchronousAverage::CheckPlan(const SynchronousAveragePlan& plan) noexcep
   return Status::Ok();
 }
 
-Status SynchronousAverage::CheckSignal(std::span<const double> signal,
-                                       const SynchronousAveragePlan& plan) const noexcept {
-  if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) return s;
-  if (Status s = CheckPlan(plan); !s) return s;
-  return dsp_detail::CheckFinite(kStage, "signal", signal);
-}
-
 Result<CheckedSignal> SynchronousAverage::Check(std::span<const double> signal) const noexcept {
   if (Status s = dsp_detail::CheckLength(kStage, "signal", signal, block_length_); !s) {
     return Error{s.error()};
@@ -236,8 +229,9 @@ Status SynchronousAverage::CheckSpreadSpans(const SynchronousAveragePlan& plan,
 Status SynchronousAverage::Process(std::span<const double> signal,
                                    const SynchronousAveragePlan& plan,
                                    SynchronousAverageRecord& out) noexcept {
-  if (Status s = CheckSignal(signal, plan); !s) return s;
-  return Process(CheckedSignal(signal), plan, out);
+  const Result<CheckedSignal> checked = Check(signal);
+  if (!checked.ok()) return Error{checked.error()};
+  return Process(checked.value(), plan, out);
 }
 
 Status SynchronousAverage::Process(const CheckedSignal& checked, const SynchronousAveragePlan& plan,
@@ -301,7 +295,9 @@ Status SynchronousAverage::RevolutionSpread(std::span<const double> signal,
                                             const SynchronousAveragePlan& plan,
                                             std::span<double> locked,
                                             std::span<double> spread) noexcept {
-  if (Status s = CheckSignal(signal, plan); !s) return s;
+  const Result<CheckedSignal> checked = Check(signal);
+  if (!checked.ok()) return Error{checked.error()};
+  if (Status s = CheckPlan(plan); !s) return s;
   if (Status s = CheckSpreadSpans(plan, locked, spread); !s) return s;
   Spread(signal, plan, locked, spread, nullptr);
   return Status::Ok();
@@ -312,8 +308,9 @@ Status SynchronousAverage::ProcessWithSpread(std::span<const double> signal,
                                              SynchronousAverageRecord& out,
                                              std::span<double> locked,
                                              std::span<double> spread) noexcept {
-  if (Status s = CheckSignal(signal, plan); !s) return s;
-  return ProcessWithSpread(CheckedSignal(signal), plan, out, locked, spread);
+  const Result<CheckedSignal> checked = Check(signal);
+  if (!checked.ok()) return Error{checked.error()};
+  return ProcessWithSpread(checked.value(), plan, out, locked, spread);
 }
 
 Status SynchronousAverage::ProcessWithSpread(const CheckedSignal& checked,

@@ -196,9 +196,7 @@ class SynchronousAverage {
   std::vector<double> average_scratch_;             // max M: ProcessWithSpread's sum
 
   // Input checks shared by the two-step Process, RevolutionSpread and ProcessWithSpread (the
-  // signal is scanned once per call, or once per Check()).
-  Status CheckSignal(std::span<const double> signal,
-                     const SynchronousAveragePlan& plan) const noexcept;
+  // signal's are Check(): once per call, or once for all rates).
   static Status CheckPlan(const SynchronousAveragePlan& plan) noexcept;
   Status CheckRecord(const SynchronousAverageRecord& out) const noexcept;
   Status CheckSpreadSpans(const SynchronousAveragePlan& plan, std::span<const double> locked,

@@ -11,8 +11,9 @@
 // per FRF row, |H_cj|^2 |F_j|^2 over the analysis band and over the mesh sideband lines, as one
 // streaming dot product per (path, row) over the |H|^2 table (frf_power_table.h; the
 // path-energy stage turns them into shares and the criterion). With a parameter chosen per
-// block (kGcv, kDiscrepancy) the chunk's bins go through Identify() one by one instead. With a precomputed operator the parameter and condition figures do not depend
-// on the block: their medians are taken once, at Configure.
+// block (kGcv, kDiscrepancy) the chunk's bins go through Identify() one by one instead. With a
+// precomputed operator the parameter and condition figures do not depend on the block: their
+// medians are taken once, at Configure.
 #pragma once
 
 #include <memory>
