@@ -51,6 +51,17 @@ void AccumulateOrders(const double* __restrict bins, std::size_t orders, std::si
   }
 }
 
+// a[m], b[m] = min, max of the two, for m < count.
+GEARPATH_SIMD_CLONES
+void SortPair(double* __restrict a, double* __restrict b, std::size_t count) noexcept {
+  for (std::size_t m = 0; m < count; ++m) {
+    const double x = a[m];
+    const double y = b[m];
+    a[m] = y < x ? y : x;
+    b[m] = y < x ? x : y;
+  }
+}
+
 }  // namespace
 
 Result<SynchronousAverage> SynchronousAverage::Create(std::size_t block_length,
@@ -84,6 +95,7 @@ Result<SynchronousAverage> SynchronousAverage::Create(std::size_t block_length,
   }
   stage.mean_scratch_.assign(max_points_per_revolution / 2 + 1, {});
   stage.average_scratch_.assign(max_points_per_revolution, 0.0);
+  stage.grid_scratch_.assign(2 * block_length, 0.0);
   for (std::size_t m = kMinPoints; m <= max_points_per_revolution; m *= 2) {
     Result<FftPlan> forward = FftPlan::Create(FftKind::kRealToComplex, m);
     if (!forward) return Error{what + forward.error()};
@@ -289,6 +301,50 @@ void SynchronousAverage::FinishAverage(const SynchronousAveragePlan& plan,
   out.revolutions = plan.revolutions;
   out.shaft_hz = plan.shaft_hz;
   out.nyquist_order = nyquist_order;
+}
+
+Status SynchronousAverage::RevolutionMedian(const CheckedSignal& checked,
+                                            const SynchronousAveragePlan& plan,
+                                            std::span<double> median) noexcept {
+  if (Status s = CheckPlan(plan); !s) return s;
+  const std::size_t points = plan.points_per_revolution;
+  const std::size_t revolutions = plan.revolutions;
+  if (median.size() != points) {
+    return Error{std::string(kStage) + ": revolution median asked for " +
+                 std::to_string(median.size()) + " points, the plan has " +
+                 std::to_string(points) + " per revolution"};
+  }
+  Resample(checked.values().data(), block_length_, plan, 0, points * revolutions,
+           grid_scratch_.data(), false);
+  // The revolutions sorted point by point by Batcher's merge exchange (Knuth, TAOCP 5.2.2,
+  // Algorithm M: a sorting network for any R, O(R log^2 R) compare-exchanges), each
+  // compare-exchange a min and a max over the M points of two contiguous rows, which vectorise;
+  // the median is then a row.
+  double* rows = grid_scratch_.data();
+  if (revolutions > 1) {
+    const auto top = std::size_t{1} << (std::bit_width(revolutions - 1) - 1);
+    for (std::size_t p = top; p > 0; p >>= 1) {
+      std::size_t q = top;
+      std::size_t r = 0;
+      std::size_t d = p;
+      for (;;) {
+        for (std::size_t i = 0; i + d < revolutions; ++i) {
+          if ((i & p) == r) SortPair(rows + i * points, rows + (i + d) * points, points);
+        }
+        if (q == p) break;
+        d = q - p;
+        q >>= 1;
+        r = p;
+      }
+    }
+  }
+  const std::size_t half = revolutions / 2;
+  const double* upper = rows + half * points;
+  const double* lower = rows + (half == 0 ? 0 : half - 1) * points;
+  for (std::size_t m = 0; m < points; ++m) {
+    median[m] = revolutions % 2 == 0 ? 0.5 * (upper[m] + lower[m]) : upper[m];
+  }
+  return Status::Ok();
 }
 
 Status SynchronousAverage::RevolutionSpread(std::span<const double> signal,

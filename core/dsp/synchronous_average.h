@@ -158,6 +158,14 @@ class SynchronousAverage {
   Status Process(const CheckedSignal& signal, const SynchronousAveragePlan& plan,
                  SynchronousAverageRecord& out) noexcept;
 
+  // The revolutions' median, point by point (for an even R the mean of the two middle values),
+  // into `median` (M values): a transient that hit one revolution does not move it (R >= 3),
+  // where it moves their mean by 1/R (transient_gate.h). The grid's values, not imaged out.
+  // Rejects what Process() rejects about the plan and a span of another size; noexcept, no
+  // allocation.
+  Status RevolutionMedian(const CheckedSignal& signal, const SynchronousAveragePlan& plan,
+                          std::span<double> median) noexcept;
+
   // How much of each order is locked to the shaft, from each revolution's own spectrum Y_{k,r}
   // (a Hann window over the revolution, so that strong lines that are not locked, such as
   // another shaft's mesh tones or a drifting one, do not leak across the low orders; amplitude-
@@ -194,6 +202,7 @@ class SynchronousAverage {
   std::vector<double> hann_;     // periodic Hann windows of 4, 8, ..., max M points, end to end
   std::vector<std::complex<double>> mean_scratch_;  // max M / 2 + 1
   std::vector<double> average_scratch_;             // max M: ProcessWithSpread's sum
+  std::vector<double> grid_scratch_;    // 2 N > R M: RevolutionMedian's resampled revolutions
 
   // Input checks shared by the two-step Process, RevolutionSpread and ProcessWithSpread (the
   // signal's are Check(): once per call, or once for all rates).

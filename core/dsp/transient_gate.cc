@@ -1,0 +1,266 @@
+#include "core/dsp/transient_gate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include "core/dsp/grid_resampler.h"
+#include "core/dsp/input_checks.h"
+
+namespace gearpath {
+namespace {
+
+constexpr const char* kStage = "transient gate";
+constexpr double kWindowSeconds = 2e-3;
+constexpr std::size_t kEdgeWindows = 8;     // end ramps (16 ms)
+constexpr double kMarkRatio = 12.0;         // whitened window energy over the median window
+constexpr std::size_t kWindowsBefore = 1;   // marked before a window over the ratio
+constexpr std::size_t kWindowsAfter = 4;    // and after it
+constexpr std::size_t kLineBins = 32;       // neighbourhood of the broadband part's median
+constexpr double kLineRatio = 3.0;          // a bin above this x the median is a line
+constexpr double kTailRatio = 0.5;          // a stretch ends below this x the median window
+
+// Raised-cosine ramp value d + 1/2 samples into a ramp of `length`.
+double Ramp(std::size_t d, std::size_t length) noexcept {
+  return 0.5 - 0.5 * std::cos(std::numbers::pi * (static_cast<double>(d) + 0.5) /
+                              static_cast<double>(length));
+}
+
+// Energy of each whole window of `x` into energies[0, windows) and a copy into
+// energies[windows, 2 windows); returns the median window's.
+double WindowEnergies(std::span<const double> x, std::size_t window, std::size_t windows,
+                      double* energies) noexcept {
+  for (std::size_t k = 0; k < windows; ++k) {
+    double e = 0.0;
+    for (std::size_t i = k * window; i < (k + 1) * window; ++i) e += x[i] * x[i];
+    energies[k] = e;
+    energies[windows + k] = e;
+  }
+  double* copy = energies + windows;
+  std::nth_element(copy, copy + windows / 2, copy + windows);
+  return copy[windows / 2];
+}
+
+}  // namespace
+
+Result<TransientGate> TransientGate::Create(std::size_t block_length, double sample_rate_hz) {
+  if (Status s = dsp_detail::CheckBlockShape(kStage, block_length, 64, sample_rate_hz); !s) {
+    return Error{s.error()};
+  }
+  TransientGate gate;
+  gate.block_length_ = block_length;
+  gate.window_ = static_cast<std::size_t>(
+      std::clamp(std::round(kWindowSeconds * sample_rate_hz), 4.0,
+                 static_cast<double>(block_length / 16)));
+  gate.edge_ = std::min(block_length / 4, kEdgeWindows * gate.window_);
+  auto forward = FftPlan::Create(FftKind::kRealToComplex, block_length);
+  if (!forward) return Error{std::string(kStage) + ": " + forward.error()};
+  auto inverse = FftPlan::Create(FftKind::kComplexToReal, block_length);
+  if (!inverse) return Error{std::string(kStage) + ": " + inverse.error()};
+  gate.forward_.emplace(std::move(forward).value());
+  gate.inverse_.emplace(std::move(inverse).value());
+  gate.whitened_.assign(block_length, 0.0);
+  gate.broadband_.assign(block_length, 0.0);
+  gate.energies_.assign(2 * (block_length / gate.window_), 0.0);
+  gate.magnitude_.assign(block_length / 2 + 1, 0.0);
+  gate.level_.assign(block_length / 2 / kLineBins + 1, 0.0);
+  gate.mask_.assign(block_length, 0);
+  gate.run_.assign(block_length, 0);
+  return gate;
+}
+
+std::size_t TransientGate::Estimate(std::span<const double> residual,
+                                    std::span<double> transient) noexcept {
+  const std::size_t n = block_length_;
+  if (residual.size() != n || transient.size() != n) return 0;
+  std::fill(transient.begin(), transient.end(), 0.0);
+
+  // 1. The whitened residual, with ramps at the ends.
+  const std::span<double> in = forward_->real_in();
+  std::copy(residual.begin(), residual.end(), in.begin());
+  for (std::size_t i = 0; i < edge_; ++i) {
+    const double ramp = Ramp(i, edge_);
+    in[i] *= ramp;
+    in[n - 1 - i] *= ramp;
+  }
+  forward_->Execute();
+  const std::span<const std::complex<double>> bins = forward_->complex_out();
+  const std::span<std::complex<double>> out = inverse_->complex_in();
+  const std::span<const double> time = inverse_->real_out();
+  for (std::size_t k = 0; k < bins.size(); ++k) magnitude_[k] = std::abs(bins[k]);
+  for (std::size_t k = 1; k < bins.size(); ++k) {
+    const double magnitude = magnitude_[k];
+    out[k] = magnitude > 0.0 ? bins[k] / magnitude : std::complex<double>{};
+  }
+  out[0] = 0.0;
+  inverse_->Execute();
+  std::copy(time.begin(), time.end(), whitened_.begin());
+
+  // 3. The broadband part: lines clipped to their neighbourhood's median magnitude.
+  const std::size_t blocks = std::max<std::size_t>(1, bins.size() / kLineBins);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t from = b * kLineBins;
+    const std::size_t to = std::min(bins.size(), from + kLineBins);
+    std::copy(magnitude_.begin() + static_cast<long>(from), magnitude_.begin() + static_cast<long>(to),
+              broadband_.begin());
+    const std::size_t count = to - from;
+    std::nth_element(broadband_.begin(), broadband_.begin() + static_cast<long>(count / 2),
+                     broadband_.begin() + static_cast<long>(count));
+    level_[b] = broadband_[count / 2];
+  }
+  const double half_block = 0.5 * static_cast<double>(kLineBins);
+  const double last_block = static_cast<double>(blocks - 1);
+  const auto length = static_cast<double>(n);  // FFTW's round trip gains n
+  for (std::size_t k = 0; k < bins.size(); ++k) {
+    const double at = std::clamp((static_cast<double>(k) - half_block) / kLineBins, 0.0,
+                                 last_block);
+    const auto b0 = static_cast<std::size_t>(at);
+    const std::size_t b1 = std::min(b0 + 1, blocks - 1);
+    const double f = at - static_cast<double>(b0);
+    const double line = kLineRatio * ((1.0 - f) * level_[b0] + f * level_[b1]);
+    const double magnitude = magnitude_[k];
+    const double gain = magnitude > line ? line / magnitude : 1.0;
+    out[k] = bins[k] * (gain / length);
+  }
+  out[0] = 0.0;
+  inverse_->Execute();
+  std::copy(time.begin(), time.end(), broadband_.begin());
+
+  const std::size_t marked = Mark();
+  if (marked == 0) return 0;
+
+  // 4. The estimate: the broadband part on the marks, ramped over one window at each edge of a
+  // stretch (distance to the nearest unmarked sample, from both sides).
+  std::uint32_t left = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    left = mask_[i] ? left + 1 : 0;
+    run_[i] = left;
+  }
+  std::uint32_t right = 0;
+  for (std::size_t i = n; i-- > 0;) {
+    right = mask_[i] ? right + 1 : 0;
+    if (!mask_[i]) continue;
+    const std::size_t d = std::min<std::size_t>(std::min(run_[i], right) - 1, window_);
+    transient[i] = (d >= window_ ? 1.0 : Ramp(d, window_)) * broadband_[i];
+  }
+  return marked;
+}
+
+std::size_t TransientGate::Mark() noexcept {
+  const std::size_t n = block_length_;
+  const std::size_t w = window_;
+  const std::size_t windows = n / w;
+  std::fill(mask_.begin(), mask_.end(), std::uint8_t{0});
+  if (windows < 3) return 0;
+  double* energies = energies_.data();
+
+  // 2. Windows far above the whitened median, with their neighbours; none within the ramps.
+  const double median = WindowEnergies(whitened_, w, windows, energies);
+  if (!(median > 0.0)) return 0;
+  for (std::size_t k = 0; k < windows; ++k) {
+    if (!(energies[k] > kMarkRatio * median)) continue;
+    const std::size_t from = k >= kWindowsBefore ? k - kWindowsBefore : 0;
+    const std::size_t to = std::min(windows, k + kWindowsAfter + 1);
+    std::fill(mask_.begin() + static_cast<long>(from * w), mask_.begin() + static_cast<long>(to * w),
+              std::uint8_t{1});
+  }
+  for (std::size_t i = 0; i < edge_; ++i) {
+    mask_[i] = 0;
+    mask_[n - 1 - i] = 0;
+  }
+
+  // 3. Each stretch goes on through the transient's tail.
+  const double tail = kTailRatio * WindowEnergies(broadband_, w, windows, energies);
+  for (std::size_t k = 1; k < windows; ++k) {
+    if (mask_[(k - 1) * w] && !mask_[k * w] && energies[k] > tail) {
+      std::fill(mask_.begin() + static_cast<long>(k * w),
+                mask_.begin() + static_cast<long>((k + 1) * w), std::uint8_t{1});
+    }
+  }
+  return static_cast<std::size_t>(std::count(mask_.begin(), mask_.end(), std::uint8_t{1}));
+}
+
+PeriodicReadPlan MakePeriodicReadPlan(std::size_t block_length) {
+  PeriodicReadPlan plan;
+  plan.first.assign(block_length, 0);
+  plan.w0.assign(block_length, 0.0);
+  plan.w1.assign(block_length, 0.0);
+  plan.w2.assign(block_length, 0.0);
+  plan.w3.assign(block_length, 0.0);
+  return plan;
+}
+
+bool PlanPeriodicRead(std::size_t points, double revolutions_per_sample,
+                      std::span<const double> nominal, PeriodicReadPlan& plan) noexcept {
+  plan.points = 0;
+  const std::size_t n = plan.first.size();
+  if (points < 4 || (points & (points - 1)) != 0 || (!nominal.empty() && nominal.size() != n) ||
+      plan.w0.size() != n || plan.w1.size() != n || plan.w2.size() != n || plan.w3.size() != n) {
+    return false;
+  }
+  // M is a power of two: x - M floor(x / M) is then exact (the value of fmod, plus M below
+  // zero), and the wrap-around is a mask.
+  const double points_per_sample = revolutions_per_sample * static_cast<double>(points);
+  const double revolution = static_cast<double>(points);
+  const double inv_revolution = 1.0 / revolution;
+  const std::size_t wrap = points - 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s = nominal.empty() ? static_cast<double>(i) : nominal[i];
+    const double x = s * points_per_sample;
+    const double pos = x - revolution * std::floor(x * inv_revolution);
+    // (A signed conversion: one instruction, where an unsigned one needs a fix-up.)
+    const auto j = std::min(static_cast<std::size_t>(static_cast<std::int64_t>(pos)), wrap);
+    // The stencil j - 1 .. j + 2 around the position (t in [1, 2) within it), as in
+    // cubic_interpolation.h; SubtractPeriodicPart's scratch holds the revolution from j - 1.
+    const double t = pos - static_cast<double>(j) + 1.0;
+    const double a = t - 1.0, b = t - 2.0, c = t - 3.0;
+    plan.first[i] = static_cast<std::uint32_t>(j);
+    plan.w0[i] = -a * b * c / 6.0;
+    plan.w1[i] = t * b * c / 2.0;
+    plan.w2[i] = t * a * c / 2.0;
+    plan.w3[i] = t * a * b / 6.0;
+  }
+  plan.points = points;
+  return true;
+}
+
+void SubtractPeriodicPart(std::span<double> signal, std::span<const double> average,
+                          const PeriodicReadPlan& plan, std::span<double> scratch) noexcept {
+  const std::size_t m = plan.points;
+  if (m == 0 || average.size() != m || scratch.size() < m + 3 ||
+      signal.size() != plan.first.size()) {
+    return;
+  }
+  // The revolution negated and wrapped (its last value first, its first two again at the end),
+  // so that the resampler's stencils read it without a wrap and add what is to be subtracted:
+  // each value is the negated stencil's, bit for bit.
+  scratch[0] = -average[m - 1];
+  for (std::size_t k = 0; k < m; ++k) scratch[k + 1] = -average[k];
+  scratch[m + 1] = -average[0];
+  scratch[m + 2] = -average[1];
+  const CubicGridView grid{plan.first.data(), plan.w0.data(), plan.w1.data(), plan.w2.data(),
+                           plan.w3.data()};
+  ResampleOnGrid(scratch.data(), m + 3, grid, 0, signal.size(), signal.data(), /*add=*/true);
+}
+
+void InvertWarp(std::span<const double> warp, std::span<double> nominal) noexcept {
+  const std::size_t n = std::min(warp.size(), nominal.size());
+  if (n < 2) {
+    for (std::size_t i = 0; i < n; ++i) nominal[i] = static_cast<double>(i);
+    return;
+  }
+  std::size_t s = 0;  // warp[s] <= i < warp[s + 1] inside the warp's range
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = static_cast<double>(i);
+    while (s + 2 < n && warp[s + 1] <= x) ++s;
+    const double lo = warp[s];
+    const double hi = warp[s + 1];
+    nominal[i] = hi > lo ? static_cast<double>(s) + (x - lo) / (hi - lo) : static_cast<double>(s);
+  }
+}
+
+}  // namespace gearpath
