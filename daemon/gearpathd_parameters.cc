@@ -320,6 +320,14 @@ ParamSpec AnalysisSection() {
                        "shaft localisation only (the exclusive residual that names the shaft); "
                        "every scored indicator stays at constant speed (docs/diagnosis.md).",
                        true)}),
+       Object("condition",
+              "The time-synchronous averages behind the gear condition indicators.",
+              {Boolean("transient_gate",
+                       "Take the short transients that no shaft explains (broadband bursts, "
+                       "knocks) out of each measured channel before its averages: an average "
+                       "keeps 1/R of a burst in one revolution, which the peak indicators read "
+                       "as a fault (docs/diagnosis.md).",
+                       true)}),
        Object("dominant_path", "How the dominant transfer path is chosen.",
               {Enum("criterion",
                     "sideband_energy: energy at mesh-harmonic sidebands; band_energy: energy in "

@@ -61,6 +61,7 @@ AnalysisOptions TranslateOptions(const json& m) {
   o.speed_search_hi_hz = Get<double>(a.at("speed"), "search_hi_hz");
   o.order_tracking = Get<bool>(a.at("speed"), "order_tracking");
   o.localisation_tracking = Get<bool>(a.at("speed"), "localisation_tracking");
+  o.transient_gate = Get<bool>(a.at("condition"), "transient_gate");
 
   const json& dom = a.at("dominant_path");
   const auto criterion = Get<std::string>(dom, "criterion");

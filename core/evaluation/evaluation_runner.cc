@@ -76,6 +76,7 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   setup.options.sample_rate_hz = options.sample_rate_hz;
   setup.options.order_tracking = options.order_tracking;
   setup.options.localisation_tracking = options.localisation_tracking;
+  setup.options.transient_gate = options.transient_gate;
   Result<BlockProcessor> processor = BlockProcessor::Create(std::move(setup));
   if (!processor) return Error{"block processor: " + processor.error()};
   if (Status st = processor->Prepare(options.block_length); !st) {

@@ -61,6 +61,7 @@ struct RunnerOptions {
   double target_rms_change = 0.03;  // <= 0: keep the default severities
   bool order_tracking = true;       // AnalysisOptions::order_tracking of every machine
   bool localisation_tracking = true;  // AnalysisOptions::localisation_tracking
+  bool transient_gate = true;         // AnalysisOptions::transient_gate
   // Give the machine the identity FRF set (core/frf/identity_frf_set.h: every sensor its own
   // path, the configuration before the hammer test) instead of the plant's model FRFs. A seat
   // sensor sits near its bearing's gears, the housing sensor near every gear.

@@ -98,6 +98,11 @@ struct AnalysisOptions {
   // wrong shaft in most drifting tuning scenarios; the scores keep the held-out family's figures
   // (docs/diagnosis.md, section 11).
   bool localisation_tracking = true;
+  // Take the transients that no shaft explains (broadband bursts, knocks) out of each measured
+  // channel before its synchronous averages (core/dsp/transient_gate.h): an average keeps 1/R
+  // of a burst in one revolution, which the peak indicators read as a fault and which widens
+  // the healthy limits (docs/diagnosis.md, section 13).
+  bool transient_gate = true;
 
   // --- Dominant path ---
   enum class DominantCriterion : std::uint8_t {

@@ -36,6 +36,7 @@ Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWo
   const std::size_t max_points = SynchronousPointsCap(work.n);
   const AnalysisOptions& o = machine.setup.options;
   localisation_only_ = o.localisation_tracking && !o.order_tracking;
+  transient_gate_ = o.transient_gate;
   plan_ok_.assign(machine.rate_groups.size(), 0);
 
   const int low_orders = IndicatorOptions{}.low_shaft_orders;  // ShapeScratch's indicators'
@@ -244,7 +245,6 @@ double ConditionIndicatorStage::LockedExclusiveEnergy(
 
 void ConditionIndicatorStage::TrackedLocalisation(StageContext& ctx) noexcept {
   BlockWorkspace& w = ctx.work;
-  const ShapeScratch& s = ctx.scratch;
   ShapeScratch::Condition& cw = ctx.scratch.condition;
   const MachineContext& m = ctx.machine;
   const std::size_t groups = m.rate_groups.size();
@@ -255,13 +255,60 @@ void ConditionIndicatorStage::TrackedLocalisation(StageContext& ctx) noexcept {
     for (std::size_t c = 0; c < m.channels; ++c) {
       const std::size_t slot = c * groups + g;  // measured signals come first
       if (!w.slot_valid[slot]) continue;
-      const std::span<const double> signal = std::span<const double>(s.time).subspan(c * w.n, w.n);
-      if (!cw.tsa->Process(signal, cw.plans[g], cw.record).ok()) continue;
+      // The measured channel as the scored averages saw it (its transients taken out).
+      if (!cw.tsa->Process(SignalOf(ctx, c), cw.plans[g], cw.record).ok()) continue;
       w.indicators[m.tracked_offset + slot] = ExclusiveEnergy(cw.record, g);
       KeepSignatureLines(ctx, c, g);  // overwrites the measured lines (already used)
     }
   }
   Signatures(ctx, /*tracked=*/true);
+}
+
+void ConditionIndicatorStage::RemoveTransients(StageContext& ctx,
+                                               std::span<const double> warp) noexcept {
+  const BlockWorkspace& w = ctx.work;
+  const ShapeScratch& s = ctx.scratch;
+  ShapeScratch::Condition& cw = ctx.scratch.condition;
+  const MachineContext& m = ctx.machine;
+  std::fill(cw.transient_samples.begin(), cw.transient_samples.end(), 0);
+  if (!transient_gate_ || !cw.gate) return;
+  if (!warp.empty()) InvertWarp(warp, cw.nominal);
+  const std::span<const double> nominal =
+      warp.empty() ? std::span<const double>() : std::span<const double>(cw.nominal);
+  const double fs = m.setup.options.sample_rate_hz;
+  for (std::size_t g = 0; g < m.rate_groups.size(); ++g) {
+    // Where each sample reads each shaft's revolution: once for every channel.
+    PeriodicReadPlan& read = cw.periodic_reads[g];
+    read.points = 0;
+    if (plan_ok_[g]) {
+      const SynchronousAveragePlan& plan = cw.plans[g];
+      (void)PlanPeriodicRead(plan.points_per_revolution, plan.shaft_hz / fs, nominal, read);
+    }
+  }
+  for (std::size_t c = 0; c < m.channels; ++c) {
+    const std::span<const double> x = std::span<const double>(s.time).subspan(c * w.n, w.n);
+    std::copy(x.begin(), x.end(), cw.residual.begin());
+    // Each shaft's periodic part is taken from what the shafts before it left, so a line that
+    // two shafts share (a mesh harmonic) is taken once.
+    bool any_shaft = false;
+    for (std::size_t g = 0; g < m.rate_groups.size(); ++g) {
+      const PeriodicReadPlan& read = cw.periodic_reads[g];
+      if (read.points == 0) continue;
+      const SynchronousAveragePlan& plan = cw.plans[g];
+      const std::span<double> median(cw.median_revolution.data(), plan.points_per_revolution);
+      const Result<CheckedSignal> residual = cw.tsa->Check(cw.residual);
+      if (!residual.ok() || !cw.tsa->RevolutionMedian(residual.value(), plan, median).ok()) {
+        continue;
+      }
+      SubtractPeriodicPart(cw.residual, median, read, cw.wrapped_revolution);
+      any_shaft = true;
+    }
+    if (!any_shaft) continue;
+    cw.transient_samples[c] = cw.gate->Estimate(cw.residual, cw.transient);
+    if (cw.transient_samples[c] == 0) continue;
+    double* cleaned = cw.cleaned.data() + c * w.n;
+    for (std::size_t i = 0; i < w.n; ++i) cleaned[i] = x[i] - cw.transient[i];
+  }
 }
 
 // The time signal of condition signal `signal` (a view of the block or of s.signal).
@@ -273,6 +320,9 @@ std::span<const double> ConditionIndicatorStage::SignalOf(const StageContext& ct
   const auto index = static_cast<std::size_t>(cs.index);
   switch (cs.source) {
     case ConditionSource::kMeasured:
+      if (s.condition.transient_samples[index] > 0) {
+        return std::span<const double>(s.condition.cleaned).subspan(index * w.n, w.n);
+      }
       return std::span<const double>(s.time).subspan(index * w.n, w.n);
     case ConditionSource::kContribution:
       w.Contribution(index, static_cast<std::size_t>(w.best_channel[index]), s.one_spec);
@@ -307,6 +357,7 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
   for (std::size_t g = 0; g < groups; ++g) {
     plan_ok_[g] = cw.tsa->Plan(m.rate_groups[g].ratio * w.speed_hz, cw.plans[g], warp).ok() ? 1 : 0;
   }
+  RemoveTransients(ctx, warp);
   for (std::size_t sig = 0; sig < m.condition_signals.size(); ++sig) {
     // Checked once for all its rate groups; a signal that fails leaves its slots invalid.
     const Result<CheckedSignal> signal = cw.tsa->Check(SignalOf(ctx, sig));

@@ -9,6 +9,9 @@
 // signal units^2) on the orders of this rate that are not harmonics of any other shaft rate. Equal
 // tooth ratios make some orders common to two rates (Table 1: 10 Hz and 7 Hz share every 70 Hz
 // line); leaving them out keeps one shaft's fault from scoring on another.
+//
+// Before its averages, each measured channel loses the short transients that none of the
+// block's shafts explains (the transient gate, core/dsp/transient_gate.h; an option).
 #pragma once
 
 #include <vector>
@@ -51,6 +54,10 @@ class ConditionIndicatorStage final : public PipelineStage {
   // transfer signatures again, from averages at the tracked angle (the warp), into the indicator
   // vector's tracked entries (MachineContext::tracked_offset).
   void TrackedLocalisation(StageContext& ctx) noexcept;
+  // AnalysisOptions::transient_gate: each measured channel with the transients that none of
+  // the block's shaft averages explains taken out (core/dsp/transient_gate.h), into the
+  // scratch's `cleaned` rows, which SignalOf() then serves.
+  void RemoveTransients(StageContext& ctx, std::span<const double> warp) noexcept;
 
   // The averager, the per-group grids, the tracker and its warp, the record and the buffers
   // live only within one block: they are the scratch's (ShapeScratch::Condition). Per rate
@@ -59,6 +66,7 @@ class ConditionIndicatorStage final : public PipelineStage {
   // AnalysisOptions::localisation_tracking without order_tracking: the tracked localisation
   // re-averages the measured channels on the grids after the scored averages.
   bool localisation_only_ = false;
+  bool transient_gate_ = false;
   std::vector<std::vector<std::uint8_t>> exclusive_;  // per group: order line is exclusive
   // signature_slot_[(group * 2 + forces) * kMaxMeshesPerShaft + mesh]: signature slot index.
   std::vector<std::size_t> signature_slot_;

@@ -90,6 +90,8 @@ std::uint64_t LearnedStateFingerprint(const MachineContext& m) {
   // The tracker's warps (and with them the tracked averages) changed with its revision; the
   // warp median of the condition stage came with revision 2.
   if (o.order_tracking || o.localisation_tracking) h.Number(kOrderTrackerRevision);
+  // Only when on: a state learned before the gate existed (or with it off) measured the same.
+  if (o.transient_gate) h.Text("transient gate 1");
   h.Number(static_cast<double>(o.criterion));
   h.Number(o.criterion_over_baseline ? 1 : 0);
   h.Number(m.band_lo);

@@ -64,6 +64,17 @@ Result<std::unique_ptr<ShapeScratch>> ShapeScratch::Create(const ShapeScratchKey
   c.record = c.tsa->MakeRecord();
   c.locked_power.assign(max_points / 2 + 1, 0.0);
   c.spread_power.assign(max_points / 2 + 1, 0.0);
+  // A block too short for the gate (under 64 samples) is averaged as it is.
+  if (auto gate = TransientGate::Create(n, fs); gate) {
+    c.gate.emplace(std::move(gate).value());
+    c.residual.assign(n, 0.0);
+    c.nominal.assign(n, 0.0);
+    c.median_revolution.assign(max_points, 0.0);
+    c.wrapped_revolution.assign(max_points + 3, 0.0);
+    c.transient.assign(n, 0.0);
+    c.cleaned.assign(channels * n, 0.0);
+  }
+  c.transient_samples.assign(channels, 0);
   if (s->key.order_tracker) {
     // A block too short to track (under 64 samples) is averaged at constant speed.
     if (auto tracker = OrderTracker::Create(n, fs); tracker) {
@@ -79,12 +90,16 @@ Result<std::unique_ptr<ShapeScratch>> ShapeScratch::Create(const ShapeScratchKey
 
 bool ShapeScratch::Serves(const ShapeScratchKey& machine_key,
                           const MachineContext& machine) const noexcept {
-  return key == machine_key && condition.plans.size() >= machine.rate_groups.size();
+  return key == machine_key && condition.plans.size() >= machine.rate_groups.size() &&
+         (!condition.gate || condition.periodic_reads.size() >= machine.rate_groups.size());
 }
 
 void ShapeScratch::Fit(const MachineContext& machine) {
   while (condition.plans.size() < machine.rate_groups.size()) {
     condition.plans.push_back(condition.tsa->MakePlan());
+  }
+  while (condition.gate && condition.periodic_reads.size() < machine.rate_groups.size()) {
+    condition.periodic_reads.push_back(MakePeriodicReadPlan(n));
   }
 }
 

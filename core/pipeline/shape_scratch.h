@@ -24,6 +24,7 @@
 #include "core/dsp/order_tracker.h"
 #include "core/dsp/spectrum.h"
 #include "core/dsp/synchronous_average.h"
+#include "core/dsp/transient_gate.h"
 #include "core/pipeline/envelope_analysis.h"
 
 namespace gearpath {
@@ -92,6 +93,21 @@ struct ShapeScratch {
     std::vector<double> locked_power;
     std::vector<double> spread_power;
     ConditionIndicatorValues values;
+    // The transient gate (core/dsp/transient_gate.h): a measured channel less its shafts'
+    // periodic parts (n), each sample's uniform-angle position on a tracked block (n), one
+    // shaft's revolution median (max M), the transients' estimate (n), and the measured channels
+    // with their transients taken out (channels x n; valid where transient_samples > 0).
+    std::optional<TransientGate> gate;
+    std::vector<double> residual;
+    std::vector<double> nominal;
+    std::vector<double> median_revolution;
+    std::vector<double> wrapped_revolution;  // max M + 3: SubtractPeriodicPart's scratch
+    // Per rate group: where each sample reads that shaft's revolution in this block (grow-only,
+    // like `plans`).
+    std::vector<PeriodicReadPlan> periodic_reads;
+    std::vector<double> transient;
+    std::vector<double> cleaned;
+    std::vector<std::size_t> transient_samples;  // per measured channel: samples marked
   } condition;
 
   // BlockProcessor::DominantPathSignal()'s signal (n): only the processor's own scratch is

@@ -39,6 +39,7 @@ struct EvaluateArgs {
   bool quiet = false;
   bool order_tracking = true;
   bool no_localisation_tracking = false;
+  bool no_transient_gate = false;
   std::string frf = "model";
   std::string dump_blocks_path;
 };
@@ -156,6 +157,7 @@ int RunEvaluate(const EvaluateArgs& args) {
   RunnerOptions runner;
   runner.order_tracking = args.order_tracking;
   runner.localisation_tracking = !args.no_localisation_tracking;
+  runner.transient_gate = !args.no_transient_gate;
   runner.identity_frf = args.frf == "identity";
   std::ofstream dump;
   std::mutex dump_mutex;
@@ -259,6 +261,8 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_flag("--no-localisation-tracking", args->no_localisation_tracking,
                 "run the machines with analysis.speed.localisation_tracking off (default on)");
+  cmd->add_flag("--no-transient-gate", args->no_transient_gate,
+                "run the machines with analysis.condition.transient_gate off (default on)");
   cmd->callback([args, &exit_code] { exit_code = RunEvaluate(*args); });
 }
 

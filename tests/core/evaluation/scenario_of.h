@@ -28,16 +28,18 @@ inline Scenario ScenarioOf(PlantFamily family, TrainVariant variant, PlantFaultK
 }
 
 // Runs a faulty scenario that must be detected; its gear is the caller's to check.
-inline ScenarioOutcome RunExpectingDetection(const Scenario& s) {
-  ScenarioOutcome out = RunScenario(s);
+inline ScenarioOutcome RunExpectingDetection(const Scenario& s,
+                                             const RunnerOptions& options = {}) {
+  ScenarioOutcome out = RunScenario(s, options);
   EXPECT_TRUE(out.error.empty()) << out.error;
   EXPECT_TRUE(out.score.detected);
   return out;
 }
 
 // Runs a faulty scenario that must be detected and put on its gear.
-inline ScenarioOutcome RunExpectingRightGear(const Scenario& s) {
-  ScenarioOutcome out = RunExpectingDetection(s);
+inline ScenarioOutcome RunExpectingRightGear(const Scenario& s,
+                                             const RunnerOptions& options = {}) {
+  ScenarioOutcome out = RunExpectingDetection(s, options);
   EXPECT_TRUE(out.score.right_gear);
   return out;
 }

@@ -376,12 +376,9 @@ TEST(BlockProcessorTest, HealthyGearboxGivesNoFaultAgainstItsLearnedBaseline) {
 // in one block must raise that block only: the previous block's z is clipped before it is
 // carried. The knock scores several limits; carried unclipped, it alone would put the next
 // healthy block over the limit as well.
-TEST(BlockProcessorTest, AKnockInOneBlockDoesNotCarryIntoTheNextBlocksScore) {
-  std::uint64_t seq = 0;
-  BlockProcessor p = LearnedProcessor(Table1Machine(), seq);
-  GearboxSimulator healthy = MakeSimulator(Table1Machine(), FaultType::kNone, "", 11);
-  BlockResult r = RunBlocks(p, healthy, 2, seq);
-  ASSERT_LT(r.score.score, 1.0);
+// A healthy block with a 3 ms half-sine knock at 30 x each channel's RMS (not tied to any
+// shaft: one knock in the block).
+AccelBlock HealthyBlockWithAKnock(GearboxSimulator& healthy, std::uint64_t& seq) {
   AccelBlock block;
   healthy.NextBlock(block);
   block.sequence = seq++;
@@ -390,15 +387,51 @@ TEST(BlockProcessorTest, AKnockInOneBlockDoesNotCarryIntoTheNextBlocksScore) {
     double rms = 0.0;
     for (std::uint32_t n = 0; n < block.samples_per_channel; ++n) rms += x[n] * x[n];
     rms = std::sqrt(rms / block.samples_per_channel);
-    for (int n = 0; n < 24; ++n) {  // a 3 ms half-sine knock at 30 x the channel RMS
+    for (int n = 0; n < 24; ++n) {
       x[1000 + n] += static_cast<float>(30.0 * rms * std::sin(M_PI * n / 24.0));
     }
   }
-  ASSERT_TRUE(p.Process(block.view(), r).accepted());
-  EXPECT_GT(r.score.score, 3.0) << "the knock should stand out: " << r.score.indicator;
-  r = RunBlocks(p, healthy, 1, seq);
+  return block;
+}
+
+// A learned Table-1 machine, two healthy blocks, then the block with a knock.
+struct KnockRun {
+  BlockProcessor processor;
+  GearboxSimulator healthy;
+  std::uint64_t seq = 0;
+  BlockResult knocked;
+};
+KnockRun RunAKnock(bool transient_gate) {
+  std::uint64_t seq = 0;
+  KnockRun run{LearnedProcessor(Table1Machine(), seq, transient_gate),
+               MakeSimulator(Table1Machine(), FaultType::kNone, "", 11), 0, {}};
+  const BlockResult before = RunBlocks(run.processor, run.healthy, 2, seq);
+  EXPECT_LT(before.score.score, 1.0);
+  const AccelBlock block = HealthyBlockWithAKnock(run.healthy, seq);
+  EXPECT_TRUE(run.processor.Process(block.view(), run.knocked).accepted());
+  run.seq = seq;
+  return run;
+}
+
+// The two-block score: a block that stands out does not carry into the next one. Without the
+// transient gate, which would take the knock out of the averages (next test).
+TEST(BlockProcessorTest, AKnockInOneBlockDoesNotCarryIntoTheNextBlocksScore) {
+  KnockRun run = RunAKnock(/*transient_gate=*/false);
+  EXPECT_GT(run.knocked.score.score, 3.0)
+      << "the knock should stand out: " << run.knocked.score.indicator;
+  const BlockResult r = RunBlocks(run.processor, run.healthy, 1, run.seq);
   EXPECT_LT(r.score.score, 1.0) << r.score.indicator;
   EXPECT_EQ(r.verdict.state, FaultState::kNoFault) << r.verdict.reason.view();
+}
+
+// With the transient gate (the default) the same knock is taken out before the averages: the
+// healthy machine's block scores as healthy.
+TEST(BlockProcessorTest, TheTransientGateTakesAKnockOutOfTheAverages) {
+  const KnockRun run = RunAKnock(/*transient_gate=*/true);
+  EXPECT_LT(run.knocked.score.score, 1.0)
+      << "the knock was left in: " << run.knocked.score.indicator;
+  EXPECT_EQ(run.knocked.verdict.state, FaultState::kNoFault)
+      << run.knocked.verdict.reason.view();
 }
 
 TEST(BlockProcessorTest, ConfiguredEnvelopeThresholdsArePublishedWhileTheBaselineIsLearned) {

@@ -94,8 +94,11 @@ inline BlockResult RunBlocks(BlockProcessor& p, GearboxSimulator& sim, int count
   return result;
 }
 
-inline BlockProcessor LearnedProcessor(const Machine& m, std::uint64_t& sequence) {
-  auto p = BlockProcessor::Create(MakeSetup(m));
+inline BlockProcessor LearnedProcessor(const Machine& m, std::uint64_t& sequence,
+                                      bool transient_gate = true) {
+  MachineSetup setup = MakeSetup(m);
+  setup.options.transient_gate = transient_gate;
+  auto p = BlockProcessor::Create(setup);
   EXPECT_TRUE(p.ok()) << p.error();
   GearboxSimulator healthy = MakeSimulator(m, FaultType::kNone, "", 7);
   const BlockResult r = RunBlocks(p.value(), healthy, kBaselineBlocks, sequence);
