@@ -230,6 +230,9 @@ struct BlockConditionIndicators {
   std::string_view shaft;          // first shaft of the rate group
   double shaft_hz = 0.0;           // the rate the synchronous average was taken at
   int revolutions = 0;             // revolutions averaged (0: not computed this block)
+  // Samples the transient gate took out of a measured channel before its averages (0: none,
+  // or a contribution or force, which keep their transients).
+  int transient_samples = 0;
   std::span<const double> value;   // indicator values (names: ConditionIndicatorNames())
   std::span<const double> z;       // robust z-score of each against the baseline (0 learning)
   double score = 0.0;              // largest directional two-block z / its limit over this set

@@ -57,6 +57,7 @@ Result<BlockWorkspace> BlockWorkspace::Create(const MachineContext& machine, std
   w.slot_valid.assign(slots, 0);
   w.slot_shaft_hz.assign(slots, 0.0);
   w.slot_revolutions.assign(slots, 0);
+  w.slot_transient_samples.assign(slots, 0);
   w.slot_residual_variance.assign(slots, 0.0);
   w.slot_score.assign(slots, 0.0);
   w.group_score.assign(machine.rate_groups.size(), 0.0);

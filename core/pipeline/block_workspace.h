@@ -82,6 +82,7 @@ struct BlockWorkspace {
   std::vector<std::uint8_t> slot_valid;    // per slot: computed this block
   std::vector<double> slot_shaft_hz;       // per slot: the rate averaged at
   std::vector<int> slot_revolutions;       // per slot: revolutions averaged
+  std::vector<int> slot_transient_samples;  // per slot: samples the transient gate took out
   std::vector<double> slot_residual_variance;  // per slot: for NA4's healthy reference
   std::vector<double> slot_score;          // per slot: largest directional z / limit
   // Lines around each mesh harmonic for the transfer signature: per signature slot, per

@@ -347,6 +347,7 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
   std::fill(w.indicators.begin(), w.indicators.end(), 0.0);
   std::fill(w.slot_valid.begin(), w.slot_valid.end(), std::uint8_t{0});
   std::fill(w.slot_revolutions.begin(), w.slot_revolutions.end(), 0);
+  std::fill(w.slot_transient_samples.begin(), w.slot_transient_samples.end(), 0);
   std::fill(w.signature_lines.begin(), w.signature_lines.end(), BlockWorkspace::Cd{});
   if (!(w.speed_hz > 0.0)) return RejectReason::kNone;
   const std::size_t groups = m.rate_groups.size();
@@ -406,6 +407,10 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
       }
       w.slot_valid[slot] = 1;
       w.slot_revolutions[slot] = static_cast<int>(cw.record.revolutions);
+      if (m.condition_signals[sig].source == ConditionSource::kMeasured) {
+        w.slot_transient_samples[slot] = static_cast<int>(
+            cw.transient_samples[static_cast<std::size_t>(m.condition_signals[sig].index)]);
+      }
       w.slot_residual_variance[slot] = cw.values.residual_variance;
       KeepSignatureLines(ctx, sig, g);
     }

@@ -144,6 +144,7 @@ void IndicatorScoringStage::Publish(StageContext& ctx) noexcept {
     c.shaft = m.topology.shaft_names[static_cast<std::size_t>(rg.shafts.front())];
     c.shaft_hz = w.slot_shaft_hz[s];
     c.revolutions = w.slot_revolutions[s];
+    c.transient_samples = w.slot_transient_samples[s];
     c.value = std::span<const double>(w.indicators).subspan(cs.offset, cs.count);
     c.z = std::span<const double>(w.z).subspan(cs.offset, cs.count);
     c.score = w.slot_score[s];

@@ -96,6 +96,7 @@ nlohmann::json BlockLine(const Scenario& sc, int block, const BlockResult& r) {
                          {"signal", std::string(c.signal)},
                          {"shaft", std::string(c.shaft)},
                          {"revolutions", c.revolutions},
+                         {"transient_samples", c.transient_samples},
                          {"value", std::vector<double>(c.value.begin(), c.value.end())},
                          {"z", std::vector<double>(c.z.begin(), c.z.end())}});
   }

@@ -419,6 +419,9 @@ TEST(BlockProcessorTest, AKnockInOneBlockDoesNotCarryIntoTheNextBlocksScore) {
   KnockRun run = RunAKnock(/*transient_gate=*/false);
   EXPECT_GT(run.knocked.score.score, 3.0)
       << "the knock should stand out: " << run.knocked.score.indicator;
+  for (const BlockConditionIndicators& c : run.knocked.condition) {
+    EXPECT_EQ(c.transient_samples, 0) << c.signal;
+  }
   const BlockResult r = RunBlocks(run.processor, run.healthy, 1, run.seq);
   EXPECT_LT(r.score.score, 1.0) << r.score.indicator;
   EXPECT_EQ(r.verdict.state, FaultState::kNoFault) << r.verdict.reason.view();
@@ -432,6 +435,15 @@ TEST(BlockProcessorTest, TheTransientGateTakesAKnockOutOfTheAverages) {
       << "the knock was left in: " << run.knocked.score.indicator;
   EXPECT_EQ(run.knocked.verdict.state, FaultState::kNoFault)
       << run.knocked.verdict.reason.view();
+  // The result says so: every measured channel's sets count the samples taken out (the knock's
+  // 3 ms and more: its ring-down into the noise), the contributions and forces none.
+  for (const BlockConditionIndicators& c : run.knocked.condition) {
+    if (c.source == ConditionSource::kMeasured) {
+      EXPECT_GE(c.transient_samples, 24) << c.signal;
+    } else {
+      EXPECT_EQ(c.transient_samples, 0) << c.signal;
+    }
+  }
 }
 
 TEST(BlockProcessorTest, ConfiguredEnvelopeThresholdsArePublishedWhileTheBaselineIsLearned) {
