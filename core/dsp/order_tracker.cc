@@ -63,6 +63,22 @@ double WarpAt(std::span<const double> warp, double u) noexcept {
   return warp[i] + f * (warp[i + 1] - warp[i]);
 }
 
+void InvertWarp(std::span<const double> warp, std::span<double> nominal) noexcept {
+  const std::size_t n = std::min(warp.size(), nominal.size());
+  if (n < 2) {
+    for (std::size_t i = 0; i < n; ++i) nominal[i] = static_cast<double>(i);
+    return;
+  }
+  std::size_t s = 0;  // warp[s] <= i < warp[s + 1] inside the warp's range
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = static_cast<double>(i);
+    while (s + 2 < n && warp[s + 1] <= x) ++s;
+    const double lo = warp[s];
+    const double hi = warp[s + 1];
+    nominal[i] = hi > lo ? static_cast<double>(s) + (x - lo) / (hi - lo) : static_cast<double>(s);
+  }
+}
+
 Result<OrderTracker> OrderTracker::Create(std::size_t block_length, double sample_rate_hz,
                                           OrderTrackerOptions options) {
   const std::string what = std::string(kStage) + ": ";

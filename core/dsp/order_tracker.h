@@ -147,4 +147,9 @@ void MedianOfWarps(std::span<const double> warps, std::size_t count,
 // end slopes outside [0, n - 1]).
 double WarpAt(std::span<const double> warp, double u) noexcept;
 
+// The uniform-angle position of every sample: the inverse of a warp (warp[s] is the sample
+// position of uniform position s, increasing), linear between its values and
+// extrapolated with its end slopes. nominal.size() == warp.size().
+void InvertWarp(std::span<const double> warp, std::span<double> nominal) noexcept;
+
 }  // namespace gearpath

@@ -45,7 +45,6 @@ class TransientGate {
   // and one c2r FFT of the block's length.
   static Result<TransientGate> Create(std::size_t block_length, double sample_rate_hz);
 
-  std::size_t block_length() const noexcept { return block_length_; }
   std::size_t window() const noexcept { return window_; }
 
   // Writes into `transient` the estimate of the transients in `residual` (zero outside them);
@@ -84,7 +83,7 @@ PeriodicReadPlan MakePeriodicReadPlan(std::size_t block_length);
 
 // Plans reading a revolution of `points` values (a power of two >= 4, as the synchronous
 // average's M) at the angle of every sample: nominal[i] x revolutions_per_sample revolutions.
-// `nominal` holds each sample's uniform-angle position (InvertWarp of the block's warp), or is
+// `nominal` holds each sample's uniform-angle position (InvertWarp of the block's warp, order_tracker.h), or is
 // empty for a constant speed (position i). False, and the plan emptied, for other points or a
 // `nominal` whose length is not the plan's.
 bool PlanPeriodicRead(std::size_t points, double revolutions_per_sample,
@@ -94,10 +93,5 @@ bool PlanPeriodicRead(std::size_t points, double revolutions_per_sample,
 // `scratch` holds plan.points + 3 values. Does nothing for spans of other sizes.
 void SubtractPeriodicPart(std::span<double> signal, std::span<const double> average,
                           const PeriodicReadPlan& plan, std::span<double> scratch) noexcept;
-
-// The uniform-angle position of every sample: the inverse of a warp (order_tracker.h: warp[s] is
-// the sample position of uniform position s, increasing), linear between its values and
-// extrapolated with its end slopes. nominal.size() == warp.size().
-void InvertWarp(std::span<const double> warp, std::span<double> nominal) noexcept;
 
 }  // namespace gearpath

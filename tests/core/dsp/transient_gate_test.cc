@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/dsp/order_tracker.h"
 #include "core/dsp/synchronous_average.h"
 #include "tests/core/dsp/test_signals.h"
 
