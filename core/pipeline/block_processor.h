@@ -277,7 +277,8 @@ struct BlockLocalisation {
   // the fault's blocks, as fractions (the mesh decision's input).
   std::array<double, kMaxMeshes> mesh_evidence{};
   // Per rate group and mesh of that group: the transfer signatures' rise over healthy
-  // (units^2): measured channels parallel, orthogonal; identified forces parallel, orthogonal.
+  // (units^2): measured channels parallel, orthogonal (each mesh harmonic's rise over its own
+  // healthy median, summed over the harmonics); identified forces parallel, orthogonal.
   std::array<std::array<std::array<double, 4>, kMaxMeshes>, kMaxGroups> signature_excess{};
 };
 

@@ -106,18 +106,23 @@ void ConditionIndicatorStage::Signatures(StageContext& ctx, bool tracked) noexce
     MeshSignatureEnergy sum;
     const BlockWorkspace::Cd* base = w.signature_lines.data() + i * w.signature_stride;
     for (int h = 0; h < kSignatureHarmonics; ++h) {
+      MeshSignatureEnergy one;
       AccumulateMeshSignature(
           std::span<const BlockWorkspace::Cd>(
               base + static_cast<std::size_t>(h) * w.signature_sensors * width, sensors * width),
-          sensors, kSignatureSidebands, sum);
+          sensors, kSignatureSidebands, one);
+      sum.parallel += one.parallel;
+      sum.orthogonal += one.orthogonal;
+      // The localisation's entries, one pair per harmonic (the tracked pass replaces them).
+      if (!ss.forces) {
+        const std::size_t at = ss.tracked_offset + 2 * static_cast<std::size_t>(h);
+        w.indicators[at] = one.parallel;
+        w.indicators[at + 1] = one.orthogonal;
+      }
     }
-    const std::size_t at = tracked ? ss.tracked_offset : ss.offset;
-    w.indicators[at] = sum.parallel;
-    w.indicators[at + 1] = sum.orthogonal;
-    if (!tracked && !ss.forces) {  // the localisation's entries, unless tracking replaces them
-      w.indicators[ss.tracked_offset] = sum.parallel;
-      w.indicators[ss.tracked_offset + 1] = sum.orthogonal;
-    }
+    if (tracked) continue;
+    w.indicators[ss.offset] = sum.parallel;
+    w.indicators[ss.offset + 1] = sum.orthogonal;
   }
 }
 

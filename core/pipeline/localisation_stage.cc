@@ -30,8 +30,10 @@ namespace {
 // parallel to m's tone, but so are m's healthy eccentricity sidebands, whose block-to-block
 // variation buries the fault's parallel rise: the parallel rise decides only when nothing rose
 // orthogonally anywhere. Each rise is its robust z (clamped at 0), in units of that
-// neighbourhood's own healthy spread: in energy units the neighbourhood the housing transmits
-// most loudly outvoted the others. The identified forces' signatures are published but not
+// neighbourhood's own healthy spread, and each mesh harmonic's neighbourhood is one such rise
+// (summed over the harmonics): in energy units the neighbourhood the housing transmits most
+// loudly outvoted the others, first between the meshes, then between one mesh's harmonics
+// (docs/diagnosis.md section 13, sixteenth session). The identified forces' signatures are published but not
 // used: on the evaluation families they named the mesh less often than the measured channels
 // alone (docs/diagnosis.md section 11).
 std::array<double, kMaxMeshesPerShaft> MeshEvidence(const MachineContext& m,
@@ -44,8 +46,10 @@ std::array<double, kMaxMeshesPerShaft> MeshEvidence(const MachineContext& m,
   double orth_total = 0.0;
   for (const SignatureSlot& ss : m.signature_slots) {
     if (ss.group != g || ss.forces) continue;
-    par[ss.mesh] = std::max(0.0, w.z[ss.tracked_offset]);
-    orth[ss.mesh] = std::max(0.0, w.z[ss.tracked_offset + 1]);
+    for (std::size_t h = 0; h < static_cast<std::size_t>(kSignatureHarmonics); ++h) {
+      par[ss.mesh] += std::max(0.0, w.z[ss.tracked_offset + 2 * h]);
+      orth[ss.mesh] += std::max(0.0, w.z[ss.tracked_offset + 2 * h + 1]);
+    }
     orth_total += orth[ss.mesh];
   }
   double total = 0.0;
@@ -140,10 +144,17 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
     if (ss.group >= BlockLocalisation::kMaxGroups || ss.mesh >= BlockLocalisation::kMaxMeshes) {
       continue;
     }
-    const std::size_t at = ss.forces ? ss.offset : ss.tracked_offset;
     auto& e = record.signature_excess[ss.group][ss.mesh];
-    e[ss.forces ? 2 : 0] = w.excess[at];
-    e[ss.forces ? 3 : 1] = w.excess[at + 1];
+    if (ss.forces) {
+      e[2] = w.excess[ss.offset];
+      e[3] = w.excess[ss.offset + 1];
+      continue;
+    }
+    e[0] = e[1] = 0.0;
+    for (std::size_t h = 0; h < static_cast<std::size_t>(kSignatureHarmonics); ++h) {
+      e[0] += w.excess[ss.tracked_offset + 2 * h];
+      e[1] += w.excess[ss.tracked_offset + 2 * h + 1];
+    }
   }
 
   // 2. The mesh, when the group's gears sit on several: the transfer-signature evidence

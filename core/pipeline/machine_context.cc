@@ -294,7 +294,7 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
   for (SignatureSlot& ss : impl->signature_slots) {
     if (ss.forces) continue;
     ss.tracked_offset = offset;
-    offset += 2;
+    offset += 2 * static_cast<std::size_t>(kSignatureHarmonics);
   }
   impl->indicator_count = offset;
   // Only the measured channels' condition indicators are scored, not the forces' or the

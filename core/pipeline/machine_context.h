@@ -55,8 +55,10 @@ struct SignatureSlot {
   bool forces = false;     // false: measured channels; true: identified bearing forces
   std::size_t mesh = 0;    // index into rate_groups[group].meshes
   std::size_t offset = 0;  // first of the two entries
-  // Measured slots: the two entries again from order-tracked averages (localisation only;
-  // MachineContext::tracked_offset); 0 for the forces' slots.
+  // Measured slots: the localisation's entries, a parallel / orthogonal pair per mesh harmonic
+  // (2 x kSignatureHarmonics, harmonic by harmonic), from order-tracked averages when the
+  // machine is tracked (MachineContext::tracked_offset); 0 for the forces' slots. One pair per
+  // harmonic, so that each neighbourhood's rise is judged in its own healthy spread.
   std::size_t tracked_offset = 0;
 };
 
@@ -89,8 +91,8 @@ struct MachineContext {
   std::size_t envelope_offset = 0;     // first envelope entry in the indicator vector
   // Then, per measured slot s (s < channels x rate groups), the exclusive residual of the
   // order-tracked average at tracked_offset + s (the same value when the block is not tracked):
-  // the localisation's shaft evidence, never scored; then the measured signature slots' entries
-  // from tracked averages (SignatureSlot::tracked_offset), the localisation's mesh evidence.
+  // the localisation's shaft evidence, never scored; then the measured signature slots'
+  // per-harmonic entries (SignatureSlot::tracked_offset), the localisation's mesh evidence.
   std::size_t tracked_offset = 0;
   std::size_t indicator_count = 0;     // length of the indicator vector
   std::size_t scored_indicator_count = 0;  // entries that can raise the block's score
