@@ -49,7 +49,9 @@ class TransientGate {
 
   // Writes into `transient` the estimate of the transients in `residual` (zero outside them);
   // returns the number of samples marked (0: `transient` is all zero). Both spans hold
-  // block_length values; otherwise nothing is marked.
+  // block_length values; otherwise nothing is marked. The marks do not depend on the residual's
+  // scale as long as its squares and their sums stay finite: |residual| < 1e100, which holds
+  // for any block of float samples (|x| < 3.5e38).
   std::size_t Estimate(std::span<const double> residual, std::span<double> transient) noexcept;
 
  private:

@@ -95,6 +95,27 @@ TEST(TransientGate, EstimatesTheBurstsAmongNoiseAndTonesAndNothingElse) {
   }
 }
 
+// The gate is scale-free (whitening, ratios to medians) over its domain: a residual at the top
+// of the float range (a block of float samples can hold no larger) gives the same marks and an
+// estimate as many times larger.
+TEST(TransientGate, MarksTheSameSamplesAtTheTopOfTheFloatRange) {
+  TransientGate gate = MakeGate();
+  std::vector<double> x = dsp_test::WhiteNoise(kN, 0.05, 23);
+  (void)AddBurst(x, 6007, 1.2, 1500.0, 5e-3);
+  std::vector<double> transient(kN);
+  const std::size_t marked = gate.Estimate(x, transient);
+  ASSERT_GT(marked, 0u);
+  constexpr double kScale = 1e38;
+  std::vector<double> huge(kN);
+  for (std::size_t i = 0; i < kN; ++i) huge[i] = kScale * x[i];
+  std::vector<double> huge_transient(kN);
+  EXPECT_EQ(gate.Estimate(huge, huge_transient), marked);
+  for (std::size_t i = 0; i < kN; ++i) {
+    ASSERT_TRUE(std::isfinite(huge_transient[i])) << i;
+    EXPECT_NEAR(huge_transient[i] / kScale, transient[i], 1e-9) << i;
+  }
+}
+
 TEST(TransientGate, RefusesSpansOfAnotherLengthAndTooShortBlocks) {
   TransientGate gate = MakeGate();
   std::vector<double> x = dsp_test::WhiteNoise(kN, 0.05, 22);
