@@ -16,13 +16,13 @@ namespace {
 
 constexpr const char* kStage = "transient gate";
 constexpr double kWindowSeconds = 2e-3;
-constexpr std::size_t kEdgeWindows = 8;     // end ramps (16 ms)
-constexpr double kMarkRatio = 12.0;         // whitened window energy over the median window
-constexpr std::size_t kWindowsBefore = 1;   // marked before a window over the ratio
-constexpr std::size_t kWindowsAfter = 4;    // and after it
-constexpr std::size_t kLineBins = 32;       // neighbourhood of the broadband part's median
-constexpr double kLineRatio = 3.0;          // a bin above this x the median is a line
-constexpr double kTailRatio = 0.5;          // a stretch ends below this x the median window
+constexpr std::size_t kEdgeWindows = 8;    // end ramps (16 ms)
+constexpr double kMarkRatio = 12.0;        // whitened window energy over the median window
+constexpr std::size_t kWindowsBefore = 1;  // marked before a window over the ratio
+constexpr std::size_t kWindowsAfter = 4;   // and after it
+constexpr std::size_t kLineBins = 32;      // neighbourhood of the broadband part's median
+constexpr double kLineRatio = 3.0;         // a bin above this x the median is a line
+constexpr double kTailRatio = 0.5;         // a stretch ends below this x the median window
 
 // Raised-cosine ramp value d + 1/2 samples into a ramp of `length`.
 double Ramp(std::size_t d, std::size_t length) noexcept {
@@ -53,9 +53,8 @@ Result<TransientGate> TransientGate::Create(std::size_t block_length, double sam
   }
   TransientGate gate;
   gate.block_length_ = block_length;
-  gate.window_ = static_cast<std::size_t>(
-      std::clamp(std::round(kWindowSeconds * sample_rate_hz), 4.0,
-                 static_cast<double>(block_length / 16)));
+  gate.window_ = static_cast<std::size_t>(std::clamp(std::round(kWindowSeconds * sample_rate_hz),
+                                                     4.0, static_cast<double>(block_length / 16)));
   gate.edge_ = std::min(block_length / 4, kEdgeWindows * gate.window_);
   auto forward = FftPlan::Create(FftKind::kRealToComplex, block_length);
   if (!forward) return Error{std::string(kStage) + ": " + forward.error()};
@@ -111,8 +110,8 @@ std::size_t TransientGate::Estimate(std::span<const double> residual,
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t from = b * kLineBins;
     const std::size_t to = std::min(bins.size(), from + kLineBins);
-    std::copy(magnitude_.begin() + static_cast<long>(from), magnitude_.begin() + static_cast<long>(to),
-              broadband_.begin());
+    std::copy(magnitude_.begin() + static_cast<long>(from),
+              magnitude_.begin() + static_cast<long>(to), broadband_.begin());
     const std::size_t count = to - from;
     std::nth_element(broadband_.begin(), broadband_.begin() + static_cast<long>(count / 2),
                      broadband_.begin() + static_cast<long>(count));
@@ -122,8 +121,8 @@ std::size_t TransientGate::Estimate(std::span<const double> residual,
   const double last_block = static_cast<double>(blocks - 1);
   const auto length = static_cast<double>(n);  // FFTW's round trip gains n
   for (std::size_t k = 0; k < bins.size(); ++k) {
-    const double at = std::clamp((static_cast<double>(k) - half_block) / kLineBins, 0.0,
-                                 last_block);
+    const double at =
+        std::clamp((static_cast<double>(k) - half_block) / kLineBins, 0.0, last_block);
     const auto b0 = static_cast<std::size_t>(at);
     const std::size_t b1 = std::min(b0 + 1, blocks - 1);
     const double f = at - static_cast<double>(b0);
@@ -171,8 +170,8 @@ std::size_t TransientGate::Mark() noexcept {
     if (!(energies[k] > kMarkRatio * median)) continue;
     const std::size_t from = k >= kWindowsBefore ? k - kWindowsBefore : 0;
     const std::size_t to = std::min(windows, k + kWindowsAfter + 1);
-    std::fill(mask_.begin() + static_cast<long>(from * w), mask_.begin() + static_cast<long>(to * w),
-              std::uint8_t{1});
+    std::fill(mask_.begin() + static_cast<long>(from * w),
+              mask_.begin() + static_cast<long>(to * w), std::uint8_t{1});
   }
   for (std::size_t i = 0; i < edge_; ++i) {
     mask_[i] = 0;

@@ -66,7 +66,7 @@ class TransientGate {
   std::optional<FftPlan> inverse_;
   std::vector<double> whitened_;
   std::vector<double> broadband_;
-  std::vector<double> energies_;  // 2 x windows
+  std::vector<double> energies_;   // 2 x windows
   std::vector<double> magnitude_;  // |bin| of the residual's spectrum
   std::vector<double> level_;      // per 32-bin neighbourhood
   std::vector<std::uint8_t> mask_;
@@ -77,7 +77,7 @@ class TransientGate {
 // stencil (cubic_interpolation.h, wrapping around the revolution) at the sample's angle. It
 // depends only on the shaft's rate and the block's warp, so one plan serves every channel.
 struct PeriodicReadPlan {
-  std::size_t points = 0;  // M; 0 until PlanPeriodicRead() succeeds
+  std::size_t points = 0;            // M; 0 until PlanPeriodicRead() succeeds
   std::vector<std::uint32_t> first;  // block_length each (MakePeriodicReadPlan)
   std::vector<double> w0, w1, w2, w3;
 };
@@ -85,9 +85,9 @@ PeriodicReadPlan MakePeriodicReadPlan(std::size_t block_length);
 
 // Plans reading a revolution of `points` values (a power of two >= 4, as the synchronous
 // average's M) at the angle of every sample: nominal[i] x revolutions_per_sample revolutions.
-// `nominal` holds each sample's uniform-angle position (InvertWarp of the block's warp, order_tracker.h), or is
-// empty for a constant speed (position i). False, and the plan emptied, for other points or a
-// `nominal` whose length is not the plan's.
+// `nominal` holds each sample's uniform-angle position (InvertWarp of the block's warp,
+// order_tracker.h), or is empty for a constant speed (position i). False, and the plan emptied, for
+// other points or a `nominal` whose length is not the plan's.
 bool PlanPeriodicRead(std::size_t points, double revolutions_per_sample,
                       std::span<const double> nominal, PeriodicReadPlan& plan) noexcept;
 

@@ -33,9 +33,9 @@ namespace {
 // neighbourhood's own healthy spread, and each mesh harmonic's neighbourhood is one such rise
 // (summed over the harmonics): in energy units the neighbourhood the housing transmits most
 // loudly outvoted the others, first between the meshes, then between one mesh's harmonics
-// (docs/diagnosis.md section 13, sixteenth session). The identified forces' signatures are published but not
-// used: on the evaluation families they named the mesh less often than the measured channels
-// alone (docs/diagnosis.md section 11).
+// (docs/diagnosis.md section 13, sixteenth session). The identified forces' signatures are
+// published but not used: on the evaluation families they named the mesh less often than the
+// measured channels alone (docs/diagnosis.md section 11).
 std::array<double, kMaxMeshesPerShaft> MeshEvidence(const MachineContext& m,
                                                     const BlockWorkspace& w,
                                                     std::size_t g) noexcept {
@@ -221,8 +221,8 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
     }
     if (!on_chosen) continue;
     loc.gear_mask |= 1u << rg.gears[i];
-    if (loc.best_gear < 0 || (rg.gear_meshes[i] == best_mesh &&
-                              GearMesh(m, loc.best_gear) != best_mesh)) {
+    if (loc.best_gear < 0 ||
+        (rg.gear_meshes[i] == best_mesh && GearMesh(m, loc.best_gear) != best_mesh)) {
       loc.best_gear = rg.gears[i];
     }
   }

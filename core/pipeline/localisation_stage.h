@@ -12,8 +12,8 @@
 //     when broadband, energy that does not travel like the other meshes' tones near theirs.
 //     Evidence for m = the other meshes' orthogonal rise on the measured channels, in robust z
 //     over its own healthy spread, harmonic by harmonic, summed over the harmonics (m's
-//     parallel rise when nothing rose orthogonally),
-//     as a fraction of the total, accumulated over the fault's blocks like the shaft evidence.
+//     parallel rise when nothing rose orthogonally), as a fraction of the total, accumulated
+//     over the fault's blocks like the shaft evidence.
 //     The mesh wins when it leads the next by AnalysisOptions::mesh_separation; otherwise
 //     every close mesh stays a candidate. (Tried first: each mesh's sideband energy, and the
 //     end bearings' force excess - a mesh force loads its own two shafts' bearings. On the

@@ -201,7 +201,8 @@ TEST(SynchronousAverageRevolutionMedian, IsTheMedianOfTheRevolutionsAtEveryPoint
   for (const std::size_t revolutions : {1u, 2u, 5u, 8u, 13u, 20u}) {
     SCOPED_TRACE(revolutions);
     const std::size_t n = 64 * revolutions + 1;
-    const std::vector<double> x = dsp_test::WhiteNoise(n, 1.0, static_cast<unsigned>(30 + revolutions));
+    const std::vector<double> x =
+        dsp_test::WhiteNoise(n, 1.0, static_cast<unsigned>(30 + revolutions));
     auto tsa = SynchronousAverage::Create(n, kFs, 4096);
     ASSERT_TRUE(tsa.ok()) << tsa.error();
     SynchronousAveragePlan plan = tsa->MakePlan();
