@@ -36,7 +36,6 @@ Status ConditionIndicatorStage::Configure(const MachineContext& machine, BlockWo
   const std::size_t max_points = SynchronousPointsCap(work.n);
   const AnalysisOptions& o = machine.setup.options;
   localisation_only_ = o.localisation_tracking && !o.order_tracking;
-  transient_gate_ = o.transient_gate;
   plan_ok_.assign(machine.rate_groups.size(), 0);
 
   const int low_orders = IndicatorOptions{}.low_shaft_orders;  // ShapeScratch's indicators'
@@ -276,7 +275,7 @@ void ConditionIndicatorStage::RemoveTransients(StageContext& ctx,
   ShapeScratch::Condition& cw = ctx.scratch.condition;
   const MachineContext& m = ctx.machine;
   std::fill(cw.transient_samples.begin(), cw.transient_samples.end(), 0);
-  if (!transient_gate_ || !cw.gate) return;
+  if (!cw.gate) return;  // off (the scratch's key holds the option) or a block too short
   if (!warp.empty()) InvertWarp(warp, cw.nominal);
   const std::span<const double> nominal =
       warp.empty() ? std::span<const double>() : std::span<const double>(cw.nominal);

@@ -66,7 +66,6 @@ class ConditionIndicatorStage final : public PipelineStage {
   // AnalysisOptions::localisation_tracking without order_tracking: the tracked localisation
   // re-averages the measured channels on the grids after the scored averages.
   bool localisation_only_ = false;
-  bool transient_gate_ = false;
   std::vector<std::vector<std::uint8_t>> exclusive_;  // per group: order line is exclusive
   // signature_slot_[(group * 2 + forces) * kMaxMeshesPerShaft + mesh]: signature slot index.
   std::vector<std::size_t> signature_slot_;

@@ -22,6 +22,7 @@ Result<ShapeScratchKey> ShapeScratchKey::Of(const MachineContext& machine, std::
   key.sample_rate_hz = o.sample_rate_hz;
   key.envelope = envelope.value();
   key.order_tracker = o.order_tracking || o.localisation_tracking;
+  key.transient_gate = o.transient_gate;
   return key;
 }
 
@@ -65,14 +66,16 @@ Result<std::unique_ptr<ShapeScratch>> ShapeScratch::Create(const ShapeScratchKey
   c.locked_power.assign(max_points / 2 + 1, 0.0);
   c.spread_power.assign(max_points / 2 + 1, 0.0);
   // A block too short for the gate (under 64 samples) is averaged as it is.
-  if (auto gate = TransientGate::Create(n, fs); gate) {
-    c.gate.emplace(std::move(gate).value());
-    c.residual.assign(n, 0.0);
-    c.nominal.assign(n, 0.0);
-    c.median_revolution.assign(max_points, 0.0);
-    c.wrapped_revolution.assign(max_points + 3, 0.0);
-    c.transient.assign(n, 0.0);
-    c.cleaned.assign(channels * n, 0.0);
+  if (key.transient_gate) {
+    if (auto gate = TransientGate::Create(n, fs); gate) {
+      c.gate.emplace(std::move(gate).value());
+      c.residual.assign(n, 0.0);
+      c.nominal.assign(n, 0.0);
+      c.median_revolution.assign(max_points, 0.0);
+      c.wrapped_revolution.assign(max_points + 3, 0.0);
+      c.transient.assign(n, 0.0);
+      c.cleaned.assign(channels * n, 0.0);
+    }
   }
   c.transient_samples.assign(channels, 0);
   if (s->key.order_tracker) {

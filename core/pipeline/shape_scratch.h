@@ -46,6 +46,7 @@ struct ShapeScratchKey {
   double sample_rate_hz = 0.0;
   EnvelopeSettings envelope;
   bool order_tracker = false;  // order or localisation tracking: the condition stage tracks
+  bool transient_gate = false;  // AnalysisOptions::transient_gate: the condition stage gates
   bool operator==(const ShapeScratchKey&) const = default;
 
   // Errors name the option (EnvelopeSettings::Of).
@@ -97,7 +98,7 @@ struct ShapeScratch {
     // periodic parts (n), each sample's uniform-angle position on a tracked block (n), one
     // shaft's revolution median (max M), the transients' estimate (n), and the measured channels
     // with their transients taken out (channels x n; valid where transient_samples > 0).
-    std::optional<TransientGate> gate;
+    std::optional<TransientGate> gate;  // key.transient_gate and a block long enough
     std::vector<double> residual;
     std::vector<double> nominal;
     std::vector<double> median_revolution;
