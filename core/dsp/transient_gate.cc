@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "core/dsp/cubic_interpolation.h"
 #include "core/dsp/grid_resampler.h"
 #include "core/dsp/input_checks.h"
 
@@ -208,26 +209,22 @@ bool PlanPeriodicRead(std::size_t points, double revolutions_per_sample,
     return false;
   }
   // M is a power of two: x - M floor(x / M) is then exact (the value of fmod, plus M below
-  // zero), and the wrap-around is a mask.
+  // zero).
   const double points_per_sample = revolutions_per_sample * static_cast<double>(points);
   const double revolution = static_cast<double>(points);
   const double inv_revolution = 1.0 / revolution;
-  const std::size_t wrap = points - 1;
   for (std::size_t i = 0; i < n; ++i) {
     const double s = nominal.empty() ? static_cast<double>(i) : nominal[i];
     const double x = s * points_per_sample;
     const double pos = x - revolution * std::floor(x * inv_revolution);
-    // (A signed conversion: one instruction, where an unsigned one needs a fix-up.)
-    const auto j = std::min(static_cast<std::size_t>(static_cast<std::int64_t>(pos)), wrap);
-    // The stencil j - 1 .. j + 2 around the position (t in [1, 2) within it), as in
-    // cubic_interpolation.h; SubtractPeriodicPart's scratch holds the revolution from j - 1.
-    const double t = pos - static_cast<double>(j) + 1.0;
-    const double a = t - 1.0, b = t - 2.0, c = t - 3.0;
-    plan.first[i] = static_cast<std::uint32_t>(j);
-    plan.w0[i] = -a * b * c / 6.0;
-    plan.w1[i] = t * b * c / 2.0;
-    plan.w2[i] = t * a * c / 2.0;
-    plan.w3[i] = t * a * b / 6.0;
+    // The stencil on SubtractPeriodicPart's scratch, which holds the revolution from its last
+    // value (position 0) to its second one again (position M + 2): position pos + 1.
+    const CubicStencil stencil = MakeCubicStencil(points + 3, pos + 1.0);
+    plan.first[i] = static_cast<std::uint32_t>(stencil.first);
+    plan.w0[i] = stencil.w0;
+    plan.w1[i] = stencil.w1;
+    plan.w2[i] = stencil.w2;
+    plan.w3[i] = stencil.w3;
   }
   plan.points = points;
   return true;
