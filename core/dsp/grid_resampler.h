@@ -4,8 +4,12 @@
 // shaft; every signal of the block is then read on it.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
+
+#include "core/dsp/cubic_interpolation.h"
 
 namespace gearpath {
 
@@ -20,6 +24,34 @@ struct CubicGridView {
   const double* w1 = nullptr;
   const double* w2 = nullptr;
   const double* w3 = nullptr;
+};
+
+// The arrays behind a CubicGridView, made once (Resize) and filled point by point each block.
+struct CubicGrid {
+  std::vector<std::uint32_t> first;
+  std::vector<double> w0, w1, w2, w3;
+
+  void Resize(std::size_t points) {
+    first.assign(points, 0);
+    w0.assign(points, 0.0);
+    w1.assign(points, 0.0);
+    w2.assign(points, 0.0);
+    w3.assign(points, 0.0);
+  }
+  // Points every array holds.
+  std::size_t size() const noexcept {
+    return std::min({first.size(), w0.size(), w1.size(), w2.size(), w3.size()});
+  }
+  void Set(std::size_t p, const CubicStencil& s) noexcept {
+    first[p] = static_cast<std::uint32_t>(s.first);
+    w0[p] = s.w0;
+    w1[p] = s.w1;
+    w2[p] = s.w2;
+    w3[p] = s.w3;
+  }
+  CubicGridView View() const noexcept {
+    return {first.data(), w0.data(), w1.data(), w2.data(), w3.data()};
+  }
 };
 
 // out[m] = x read at grid point begin + m, for m < count (out[m] += it with `add`). x holds n

@@ -29,9 +29,7 @@ std::size_t PlanIndex(std::size_t points) noexcept {
 // out[m] += it with `add`).
 void Resample(const double* x, std::size_t n, const SynchronousAveragePlan& plan, std::size_t begin,
               std::size_t count, double* out, bool add) noexcept {
-  const CubicGridView grid{plan.first.data(), plan.w0.data(), plan.w1.data(), plan.w2.data(),
-                           plan.w3.data()};
-  ResampleOnGrid(x, n, grid, begin, count, out, add);
+  ResampleOnGrid(x, n, plan.grid.View(), begin, count, out, add);
 }
 
 // mean[k] += Y_k and spread[k] += |Y_k|^2 for k < orders, Y_k = bins[k] x (edge at k = 0 and
@@ -125,11 +123,7 @@ SynchronousAverageRecord SynchronousAverage::MakeRecord() const {
 SynchronousAveragePlan SynchronousAverage::MakePlan() const {
   SynchronousAveragePlan plan;
   // R M < 2 N: M < 2 fs / f and R <= (N - 1) f / fs.
-  plan.first.assign(2 * block_length_, 0);
-  plan.w0.assign(2 * block_length_, 0.0);
-  plan.w1.assign(2 * block_length_, 0.0);
-  plan.w2.assign(2 * block_length_, 0.0);
-  plan.w3.assign(2 * block_length_, 0.0);
+  plan.grid.Resize(2 * block_length_);
   return plan;
 }
 
@@ -144,9 +138,7 @@ Status SynchronousAverage::Plan(double shaft_hz, SynchronousAveragePlan& plan,
     return Error{std::string(kStage) + ": shaft_hz " + std::to_string(shaft_hz) +
                  " must be finite and positive"};
   }
-  if (plan.first.size() < 2 * block_length_ || plan.w0.size() < 2 * block_length_ ||
-      plan.w1.size() < 2 * block_length_ || plan.w2.size() < 2 * block_length_ ||
-      plan.w3.size() < 2 * block_length_) {
+  if (plan.grid.size() < 2 * block_length_) {
     return Error{std::string(kStage) + ": plan was not made by this stage's MakePlan()"};
   }
   const double fs = sample_rate_hz_;
@@ -178,12 +170,7 @@ Status SynchronousAverage::Plan(double shaft_hz, SynchronousAveragePlan& plan,
   for (std::size_t p = 0; p < points; ++p) {
     const double at = static_cast<double>(p) * step;
     const double u = warp.empty() ? at : std::clamp(WarpAt(warp, at), 0.0, last);
-    const CubicStencil st = MakeCubicStencil(block_length_, u);
-    plan.first[p] = static_cast<std::uint32_t>(st.first);
-    plan.w0[p] = st.w0;
-    plan.w1[p] = st.w1;
-    plan.w2[p] = st.w2;
-    plan.w3[p] = st.w3;
+    plan.grid.Set(p, MakeCubicStencil(block_length_, u));
   }
   plan.points_per_revolution = m_points;
   plan.revolutions = revolutions;

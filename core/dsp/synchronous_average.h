@@ -54,8 +54,8 @@
 #include <vector>
 
 #include "core/common/result.h"
-#include "core/dsp/cubic_interpolation.h"
 #include "core/dsp/fft_plan.h"
+#include "core/dsp/grid_resampler.h"
 
 namespace gearpath {
 
@@ -90,9 +90,8 @@ struct SynchronousAveragePlan {
   std::size_t revolutions = 0;            // R
   double shaft_hz = 0.0;
   double nyquist_order = 0.0;
-  // Capacity 2 N > R M each (36 B per point: 1.2 MB at N = 16 000).
-  std::vector<std::uint32_t> first;
-  std::vector<double> w0, w1, w2, w3;
+  // Capacity 2 N > R M points (36 B per point: 1.2 MB at N = 16 000).
+  CubicGrid grid;
 };
 
 // A block signal that SynchronousAverage::Check() found the right length and finite: averaging

@@ -192,20 +192,15 @@ std::size_t TransientGate::Mark() noexcept {
 
 PeriodicReadPlan MakePeriodicReadPlan(std::size_t block_length) {
   PeriodicReadPlan plan;
-  plan.first.assign(block_length, 0);
-  plan.w0.assign(block_length, 0.0);
-  plan.w1.assign(block_length, 0.0);
-  plan.w2.assign(block_length, 0.0);
-  plan.w3.assign(block_length, 0.0);
+  plan.grid.Resize(block_length);
   return plan;
 }
 
 bool PlanPeriodicRead(std::size_t points, double revolutions_per_sample,
                       std::span<const double> nominal, PeriodicReadPlan& plan) noexcept {
   plan.points = 0;
-  const std::size_t n = plan.first.size();
-  if (points < 4 || (points & (points - 1)) != 0 || (!nominal.empty() && nominal.size() != n) ||
-      plan.w0.size() != n || plan.w1.size() != n || plan.w2.size() != n || plan.w3.size() != n) {
+  const std::size_t n = plan.grid.size();
+  if (points < 4 || (points & (points - 1)) != 0 || (!nominal.empty() && nominal.size() != n)) {
     return false;
   }
   // M is a power of two: x - M floor(x / M) is then exact (the value of fmod, plus M below
@@ -219,12 +214,7 @@ bool PlanPeriodicRead(std::size_t points, double revolutions_per_sample,
     const double pos = x - revolution * std::floor(x * inv_revolution);
     // The stencil on SubtractPeriodicPart's scratch, which holds the revolution from its last
     // value (position 0) to its second one again (position M + 2): position pos + 1.
-    const CubicStencil stencil = MakeCubicStencil(points + 3, pos + 1.0);
-    plan.first[i] = static_cast<std::uint32_t>(stencil.first);
-    plan.w0[i] = stencil.w0;
-    plan.w1[i] = stencil.w1;
-    plan.w2[i] = stencil.w2;
-    plan.w3[i] = stencil.w3;
+    plan.grid.Set(i, MakeCubicStencil(points + 3, pos + 1.0));
   }
   plan.points = points;
   return true;
@@ -234,7 +224,7 @@ void SubtractPeriodicPart(std::span<double> signal, std::span<const double> aver
                           const PeriodicReadPlan& plan, std::span<double> scratch) noexcept {
   const std::size_t m = plan.points;
   if (m == 0 || average.size() != m || scratch.size() < m + 3 ||
-      signal.size() != plan.first.size()) {
+      signal.size() != plan.grid.size()) {
     return;
   }
   // The revolution negated and wrapped (its last value first, its first two again at the end),
@@ -244,9 +234,8 @@ void SubtractPeriodicPart(std::span<double> signal, std::span<const double> aver
   for (std::size_t k = 0; k < m; ++k) scratch[k + 1] = -average[k];
   scratch[m + 1] = -average[0];
   scratch[m + 2] = -average[1];
-  const CubicGridView grid{plan.first.data(), plan.w0.data(), plan.w1.data(), plan.w2.data(),
-                           plan.w3.data()};
-  ResampleOnGrid(scratch.data(), m + 3, grid, 0, signal.size(), signal.data(), /*add=*/true);
+  ResampleOnGrid(scratch.data(), m + 3, plan.grid.View(), 0, signal.size(), signal.data(),
+                 /*add=*/true);
 }
 
 }  // namespace gearpath

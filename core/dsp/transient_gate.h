@@ -36,6 +36,7 @@
 
 #include "core/common/result.h"
 #include "core/dsp/fft_plan.h"
+#include "core/dsp/grid_resampler.h"
 
 namespace gearpath {
 
@@ -77,9 +78,8 @@ class TransientGate {
 // stencil (cubic_interpolation.h, wrapping around the revolution) at the sample's angle. It
 // depends only on the shaft's rate and the block's warp, so one plan serves every channel.
 struct PeriodicReadPlan {
-  std::size_t points = 0;            // M; 0 until PlanPeriodicRead() succeeds
-  std::vector<std::uint32_t> first;  // block_length each (MakePeriodicReadPlan)
-  std::vector<double> w0, w1, w2, w3;
+  std::size_t points = 0;  // M; 0 until PlanPeriodicRead() succeeds
+  CubicGrid grid;          // block_length points (MakePeriodicReadPlan)
 };
 PeriodicReadPlan MakePeriodicReadPlan(std::size_t block_length);
 
