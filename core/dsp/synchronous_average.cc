@@ -12,6 +12,7 @@
 #include "core/dsp/grid_resampler.h"
 #include "core/dsp/input_checks.h"
 #include "core/dsp/order_tracker.h"
+#include "core/dsp/sorting_network.h"
 
 namespace gearpath {
 namespace {
@@ -46,17 +47,6 @@ void AccumulateOrders(const double* __restrict bins, std::size_t orders, std::si
     mean[2 * k] += re;
     mean[2 * k + 1] += im;
     spread[k] += re * re + im * im;
-  }
-}
-
-// a[m], b[m] = min, max of the two, for m < count.
-GEARPATH_SIMD_CLONES
-void SortPair(double* __restrict a, double* __restrict b, std::size_t count) noexcept {
-  for (std::size_t m = 0; m < count; ++m) {
-    const double x = a[m];
-    const double y = b[m];
-    a[m] = y < x ? y : x;
-    b[m] = y < x ? x : y;
   }
 }
 
@@ -298,33 +288,18 @@ Status SynchronousAverage::RevolutionMedian(const CheckedSignal& checked,
   const std::size_t revolutions = plan.revolutions;
   if (median.size() != points) {
     return Error{std::string(kStage) + ": revolution median asked for " +
-                 std::to_string(median.size()) + " points, the plan has " +
-                 std::to_string(points) + " per revolution"};
+                 std::to_string(median.size()) + " points, the plan has " + std::to_string(points) +
+                 " per revolution"};
+  }
+  if (revolutions == 0 || points * revolutions > grid_scratch_.size()) {
+    return Error{std::string(kStage) + ": revolution median: the plan's " +
+                 std::to_string(revolutions) + " revolutions of " + std::to_string(points) +
+                 " points do not fit this stage's block"};
   }
   Resample(checked.values().data(), block_length_, plan, 0, points * revolutions,
            grid_scratch_.data(), false);
-  // The revolutions sorted point by point by Batcher's merge exchange (Knuth, TAOCP 5.2.2,
-  // Algorithm M: a sorting network for any R, O(R log^2 R) compare-exchanges), each
-  // compare-exchange a min and a max over the M points of two contiguous rows, which vectorise;
-  // the median is then a row.
   double* rows = grid_scratch_.data();
-  if (revolutions > 1) {
-    const auto top = std::size_t{1} << (std::bit_width(revolutions - 1) - 1);
-    for (std::size_t p = top; p > 0; p >>= 1) {
-      std::size_t q = top;
-      std::size_t r = 0;
-      std::size_t d = p;
-      for (;;) {
-        for (std::size_t i = 0; i + d < revolutions; ++i) {
-          if ((i & p) == r) SortPair(rows + i * points, rows + (i + d) * points, points);
-        }
-        if (q == p) break;
-        d = q - p;
-        q >>= 1;
-        r = p;
-      }
-    }
-  }
+  SortColumns(rows, revolutions, points);  // the median is then a row
   const std::size_t half = revolutions / 2;
   const double* upper = rows + half * points;
   const double* lower = rows + (half == 0 ? 0 : half - 1) * points;
