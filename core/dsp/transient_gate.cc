@@ -11,6 +11,7 @@
 #include "core/dsp/cubic_interpolation.h"
 #include "core/dsp/grid_resampler.h"
 #include "core/dsp/input_checks.h"
+#include "core/dsp/sorting_network.h"
 
 namespace gearpath {
 namespace {
@@ -68,6 +69,7 @@ Result<TransientGate> TransientGate::Create(std::size_t block_length, double sam
   gate.energies_.assign(2 * (block_length / gate.window_), 0.0);
   gate.magnitude_.assign(block_length / 2 + 1, 0.0);
   gate.level_.assign(block_length / 2 / kLineBins + 1, 0.0);
+  gate.neighbourhoods_.assign(kLineBins * gate.level_.size(), 0.0);
   gate.mask_.assign(block_length, 0);
   gate.run_.assign(block_length, 0);
   return gate;
@@ -106,18 +108,17 @@ std::size_t TransientGate::Estimate(std::span<const double> residual,
   inverse_->Execute();
   std::copy(time.begin(), time.end(), whitened_.begin());
 
-  // 3. The broadband part: lines clipped to their neighbourhood's median magnitude.
-  const std::size_t blocks = std::max<std::size_t>(1, bins.size() / kLineBins);
+  // 3. The broadband part: lines clipped to their neighbourhood's median magnitude (the upper
+  // one of 32, the value of rank 16). Every neighbourhood is whole (block_length >= 64: 33 bins
+  // or more); all are sorted at once by a network over a table with one column each.
+  const std::size_t blocks = bins.size() / kLineBins;
+  double* table = neighbourhoods_.data();
   for (std::size_t b = 0; b < blocks; ++b) {
-    const std::size_t from = b * kLineBins;
-    const std::size_t to = std::min(bins.size(), from + kLineBins);
-    std::copy(magnitude_.begin() + static_cast<long>(from),
-              magnitude_.begin() + static_cast<long>(to), broadband_.begin());
-    const std::size_t count = to - from;
-    std::nth_element(broadband_.begin(), broadband_.begin() + static_cast<long>(count / 2),
-                     broadband_.begin() + static_cast<long>(count));
-    level_[b] = broadband_[count / 2];
+    for (std::size_t j = 0; j < kLineBins; ++j)
+      table[j * blocks + b] = magnitude_[b * kLineBins + j];
   }
+  SortColumns(table, kLineBins, blocks);
+  std::copy(table + kLineBins / 2 * blocks, table + (kLineBins / 2 + 1) * blocks, level_.begin());
   const double half_block = 0.5 * static_cast<double>(kLineBins);
   const double last_block = static_cast<double>(blocks - 1);
   const auto length = static_cast<double>(n);  // FFTW's round trip gains n

@@ -70,6 +70,7 @@ class TransientGate {
   std::vector<double> energies_;   // 2 x windows
   std::vector<double> magnitude_;  // |bin| of the residual's spectrum
   std::vector<double> level_;      // per 32-bin neighbourhood
+  std::vector<double> neighbourhoods_;  // 32 rows: row j holds bin j of every neighbourhood
   std::vector<std::uint8_t> mask_;
   std::vector<std::uint32_t> run_;  // marked samples in a row, from the left (then the right)
 };
