@@ -49,9 +49,15 @@ Status EnvelopeSpectrum::Process(std::span<const double> input, std::span<double
   // One-sided amplitude scaling (spectrum.h): 2/N inside, 1/N at DC and Nyquist; then / <e^2>.
   const double n = static_cast<double>(block_length_);
   const double interior = 2.0 / (n * mean);
-  for (std::size_t k = 0; k < x.size(); ++k) ses[k] = std::abs(x[k]) * interior;
-  ses[0] = std::abs(x[0]) / (n * mean);
-  if (block_length_ % 2 == 0) ses.back() = std::abs(x.back()) / (n * mean);
+  // Scaled before squaring, |X_k| / (n <e^2>) <= 2, so sqrt(re^2 + im^2) cannot overflow and
+  // std::abs's hypot (a library call per bin, guarding against that) is not needed.
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double re = x[k].real() * interior;
+    const double im = x[k].imag() * interior;
+    ses[k] = std::sqrt(re * re + im * im);
+  }
+  ses[0] *= 0.5;
+  if (block_length_ % 2 == 0) ses.back() *= 0.5;
   return Status::Ok();
 }
 
