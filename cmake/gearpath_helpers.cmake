@@ -14,8 +14,12 @@ function(gearpath_module name)
     # ("very cheap"); the per-block kernels (docs/performance.md) are written for the vectoriser,
     # so the core libraries use the -O3 cost model at every optimisation level. It changes which
     # loops are vectorised, not results: without -ffast-math no floating-point sum is reordered.
+    # -fno-math-errno: no core code reads errno after a math call, and with errno to set GCC
+    # keeps every sqrt a scalar call; vsqrtpd rounds exactly as sqrtsd (IEEE), so the
+    # magnitudes' loops vectorise with the same bits.
     target_compile_options(gearpath_${name} PRIVATE
-      $<$<AND:$<CXX_COMPILER_ID:GNU>,$<NOT:$<CONFIG:Debug>>>:-fvect-cost-model=dynamic>)
+      $<$<AND:$<CXX_COMPILER_ID:GNU>,$<NOT:$<CONFIG:Debug>>>:-fvect-cost-model=dynamic>
+      -fno-math-errno)
     set_target_properties(gearpath_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   else()
     add_library(gearpath_${name} INTERFACE)
