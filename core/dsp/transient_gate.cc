@@ -138,8 +138,9 @@ std::size_t TransientGate::Estimate(std::span<const double> residual,
   const std::size_t blocks = bins.size() / kLineBins;
   double* table = neighbourhoods_.data();
   for (std::size_t b = 0; b < blocks; ++b) {
-    for (std::size_t j = 0; j < kLineBins; ++j)
+    for (std::size_t j = 0; j < kLineBins; ++j) {
       table[j * blocks + b] = magnitude_[b * kLineBins + j];
+    }
   }
   SortColumns(table, kLineBins, blocks);
   std::copy(table + kLineBins / 2 * blocks, table + (kLineBins / 2 + 1) * blocks, level_.begin());
