@@ -94,8 +94,6 @@ Result<TransientGate> TransientGate::Create(std::size_t block_length, double sam
   if (!inverse) return Error{std::string(kStage) + ": " + inverse.error()};
   gate.forward_.emplace(std::move(forward).value());
   gate.inverse_.emplace(std::move(inverse).value());
-  gate.whitened_.assign(block_length, 0.0);
-  gate.broadband_.assign(block_length, 0.0);
   gate.energies_.assign(2 * (block_length / gate.window_), 0.0);
   gate.magnitude_.assign(block_length / 2 + 1, 0.0);
   gate.level_.assign(block_length / 2 / kLineBins + 1, 0.0);
@@ -130,7 +128,9 @@ std::size_t TransientGate::Estimate(std::span<const double> residual,
                      reinterpret_cast<double*>(out.data()));
   out[0] = 0.0;
   inverse_->Execute();
-  std::copy(time.begin(), time.end(), whitened_.begin());
+  // Nothing far above the median window: nothing to estimate, and the broadband part below is
+  // not needed (most blocks; the stretches of step 3 only grow from marks).
+  if (MarkPeaks(time) == 0) return 0;
 
   // 3. The broadband part: lines clipped to their neighbourhood's median magnitude (the upper
   // one of 32, the value of rank 16). Every neighbourhood is whole (block_length >= 64: 33 bins
@@ -159,11 +159,8 @@ std::size_t TransientGate::Estimate(std::span<const double> residual,
     out[k] = bins[k] * (gain / length);
   }
   out[0] = 0.0;
-  inverse_->Execute();
-  std::copy(time.begin(), time.end(), broadband_.begin());
-
-  const std::size_t marked = Mark();
-  if (marked == 0) return 0;
+  inverse_->Execute();  // `time` holds the broadband part from here on
+  const std::size_t marked = ExtendThroughTails(time);
 
   // 4. The estimate: the broadband part on the marks, ramped over one window at each edge of a
   // stretch (distance to the nearest unmarked sample, from both sides).
@@ -177,12 +174,12 @@ std::size_t TransientGate::Estimate(std::span<const double> residual,
     right = mask_[i] ? right + 1 : 0;
     if (!mask_[i]) continue;
     const std::size_t d = std::min<std::size_t>(std::min(run_[i], right) - 1, window_);
-    transient[i] = (d >= window_ ? 1.0 : Ramp(d, window_)) * broadband_[i];
+    transient[i] = (d >= window_ ? 1.0 : Ramp(d, window_)) * time[i];
   }
   return marked;
 }
 
-std::size_t TransientGate::Mark() noexcept {
+std::size_t TransientGate::MarkPeaks(std::span<const double> whitened) noexcept {
   const std::size_t n = block_length_;
   const std::size_t w = window_;
   const std::size_t windows = n / w;
@@ -191,7 +188,7 @@ std::size_t TransientGate::Mark() noexcept {
   double* energies = energies_.data();
 
   // 2. Windows far above the whitened median, with their neighbours; none within the ramps.
-  const double median = WindowEnergies(whitened_, w, windows, energies);
+  const double median = WindowEnergies(whitened, w, windows, energies);
   if (!(median > 0.0)) return 0;
   for (std::size_t k = 0; k < windows; ++k) {
     if (!(energies[k] > kMarkRatio * median)) continue;
@@ -204,9 +201,15 @@ std::size_t TransientGate::Mark() noexcept {
     mask_[i] = 0;
     mask_[n - 1 - i] = 0;
   }
+  return static_cast<std::size_t>(std::count(mask_.begin(), mask_.end(), std::uint8_t{1}));
+}
 
+std::size_t TransientGate::ExtendThroughTails(std::span<const double> broadband) noexcept {
+  const std::size_t w = window_;
+  const std::size_t windows = block_length_ / w;
+  double* energies = energies_.data();
   // 3. Each stretch goes on through the transient's tail.
-  const double tail = kTailRatio * WindowEnergies(broadband_, w, windows, energies);
+  const double tail = kTailRatio * WindowEnergies(broadband, w, windows, energies);
   for (std::size_t k = 1; k < windows; ++k) {
     if (mask_[(k - 1) * w] && !mask_[k * w] && energies[k] > tail) {
       std::fill(mask_.begin() + static_cast<long>(k * w),

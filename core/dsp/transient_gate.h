@@ -57,19 +57,19 @@ class TransientGate {
 
  private:
   TransientGate() = default;
-  // Step 2 and 3's marks from the whitened residual and the broadband part.
-  std::size_t Mark() noexcept;
+  // Step 2's marks from the whitened residual (mask_ rewritten) and their count; step 3's
+  // extension of them through the broadband part's tails, and the final count.
+  std::size_t MarkPeaks(std::span<const double> whitened) noexcept;
+  std::size_t ExtendThroughTails(std::span<const double> broadband) noexcept;
 
   std::size_t block_length_ = 0;
   std::size_t window_ = 0;  // samples per window (2 ms)
   std::size_t edge_ = 0;    // samples of each end ramp
   std::optional<FftPlan> forward_;
   std::optional<FftPlan> inverse_;
-  std::vector<double> whitened_;
-  std::vector<double> broadband_;
-  std::vector<double> energies_;   // 2 x windows
-  std::vector<double> magnitude_;  // |bin| of the residual's spectrum
-  std::vector<double> level_;      // per 32-bin neighbourhood
+  std::vector<double> energies_;        // 2 x windows
+  std::vector<double> magnitude_;       // |bin| of the residual's spectrum
+  std::vector<double> level_;           // per 32-bin neighbourhood
   std::vector<double> neighbourhoods_;  // 32 rows: row j holds bin j of every neighbourhood
   std::vector<std::uint8_t> mask_;
   std::vector<std::uint32_t> run_;  // marked samples in a row, from the left (then the right)
