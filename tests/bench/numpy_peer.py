@@ -452,8 +452,9 @@ def periodic_read(plan, n, shaft_hz, fs):
     return first[:, None] + np.arange(4), w
 
 
-def gate_marks(whitened, broadband, w, edge):
-    """Marked samples (n, S) from the whitened residual and the broadband part (Mark())."""
+def gate_peaks(whitened, w, edge):
+    """Marked windows (windows, S): those over 12 x the median window of the whitened residual
+    and their neighbours, none within the end ramps (MarkPeaks())."""
     n, s = whitened.shape
     windows = n // w
     e = (whitened[:windows * w] ** 2).reshape(windows, w, s).sum(axis=1)
@@ -466,13 +467,20 @@ def gate_marks(whitened, broadband, w, edge):
     edge_windows = edge // w
     marked[:edge_windows] = False
     marked[windows - edge_windows:] = False
-    # A stretch goes on through the windows whose broadband energy stays over the tail level.
+    return marked
+
+
+def gate_tails(marked, broadband, w):
+    """Marked samples (n, S): each stretch of marked windows (windows, S) extended through the
+    windows whose broadband energy stays over the tail level (ExtendThroughTails())."""
+    windows, s = marked.shape
+    n = broadband.shape[0]
     eb = (broadband[:windows * w] ** 2).reshape(windows, w, s).sum(axis=1)
     ok = eb > GATE_TAIL_RATIO * np.partition(eb, windows // 2, axis=0)[windows // 2]
     k = np.arange(windows)[:, None]
     last_mark = np.maximum.accumulate(np.where(marked, k, -1), axis=0)
     last_break = np.maximum.accumulate(np.where(ok, -1, k), axis=0)
-    marked |= (last_mark >= 0) & (last_break <= last_mark)
+    marked = marked | ((last_mark >= 0) & (last_break <= last_mark))
     mask = np.zeros((n, s), bool)
     mask[:windows * w] = np.repeat(marked, w, axis=0)
     return mask
@@ -514,10 +522,17 @@ def gate_estimate(residual, fs):
     white = np.divide(spec, mag, out=np.zeros_like(spec), where=mag > 0.0)
     white[0] = 0.0
     whitened = np.fft.irfft(white, n=n, axis=0)
+    peaks = gate_peaks(whitened, w, edge)
+    transient = np.zeros_like(residual)
+    marked = np.zeros(s, np.int64)
+    hit = np.flatnonzero(peaks.any(axis=0))  # only these channels need their broadband part
+    if hit.size == 0:
+        return transient, marked
+    spec, mag, peaks = spec[:, hit], mag[:, hit], peaks[:, hit]
     bins = spec.shape[0]
     blocks = bins // GATE_LINE_BINS
-    level = np.partition(mag[:blocks * GATE_LINE_BINS].reshape(blocks, GATE_LINE_BINS, s),
-                         GATE_LINE_BINS // 2, axis=1)[:, GATE_LINE_BINS // 2]   # (blocks, S)
+    level = np.partition(mag[:blocks * GATE_LINE_BINS].reshape(blocks, GATE_LINE_BINS, hit.size),
+                         GATE_LINE_BINS // 2, axis=1)[:, GATE_LINE_BINS // 2]  # (blocks, hit)
     at = np.clip((np.arange(bins) - 0.5 * GATE_LINE_BINS) / GATE_LINE_BINS, 0.0, blocks - 1)
     b0 = at.astype(np.int64)
     b1 = np.minimum(b0 + 1, blocks - 1)
@@ -527,14 +542,16 @@ def gate_estimate(residual, fs):
     clipped = spec * gain
     clipped[0] = 0.0
     broadband = np.fft.irfft(clipped, n=n, axis=0)
-    mask = gate_marks(whitened, broadband, w, edge)
+    mask = gate_tails(peaks, broadband, w)
     # Each stretch ramped over one window at its edges (distance to the nearest unmarked sample).
     i = np.arange(n)[:, None]
     left = i - np.maximum.accumulate(np.where(mask, -1, i), axis=0)
     right = (i - np.maximum.accumulate(np.where(mask[::-1], -1, i), axis=0))[::-1]
     d = np.minimum(np.minimum(left, right) - 1, w)
-    transient = np.where(mask, np.where(d >= w, 1.0, ramp(np.maximum(d, 0), w)) * broadband, 0.0)
-    return transient, mask.sum(axis=0)
+    transient[:, hit] = np.where(mask, np.where(d >= w, 1.0, ramp(np.maximum(d, 0), w)) * broadband,
+                                 0.0)
+    marked[hit] = mask.sum(axis=0)
+    return transient, marked
 
 
 class IndicatorLayout:
