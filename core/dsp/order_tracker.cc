@@ -239,7 +239,10 @@ Result<OrderTrackResult> OrderTracker::Run(std::span<const double> signal, doubl
     for (std::size_t i = 0; i < n_; ++i) {
       const double a = std::arg(z[i]);
       double d = a - previous;
-      d -= kTwoPi * std::round(d / kTwoPi);
+      // Under half a turn round() is 0 and d stays as it is (bit for bit): std::round is a
+      // library call on baseline x86-64, and nearly every step of a tracked carrier is small.
+      const double turns = d / kTwoPi;
+      if (std::abs(turns) >= 0.5) d -= kTwoPi * std::round(turns);
       unwrapped += i == 0 ? 0.0 : d;
       previous = a;
       phase_[i] = unwrapped - offset_slope * static_cast<double>(i);
