@@ -181,6 +181,11 @@ Status SynchronousAverage::CheckPlan(const SynchronousAveragePlan& plan) noexcep
   if (plan.points_per_revolution == 0) {
     return Error{std::string(kStage) + ": the plan holds no grid (Plan() failed or never ran)"};
   }
+  if (plan.revolutions == 0 || plan.points_per_revolution * plan.revolutions > plan.grid.size()) {
+    return Error{std::string(kStage) + ": the plan's " + std::to_string(plan.revolutions) +
+                 " revolutions of " + std::to_string(plan.points_per_revolution) +
+                 " points do not fit its grid"};
+  }
   return Status::Ok();
 }
 
@@ -290,11 +295,6 @@ Status SynchronousAverage::RevolutionMedian(const CheckedSignal& checked,
     return Error{std::string(kStage) + ": revolution median asked for " +
                  std::to_string(median.size()) + " points, the plan has " + std::to_string(points) +
                  " per revolution"};
-  }
-  if (revolutions == 0 || points * revolutions > grid_scratch_.size()) {
-    return Error{std::string(kStage) + ": revolution median: the plan's " +
-                 std::to_string(revolutions) + " revolutions of " + std::to_string(points) +
-                 " points do not fit this stage's block"};
   }
   Resample(checked.values().data(), block_length_, plan, 0, points * revolutions,
            grid_scratch_.data(), false);

@@ -391,6 +391,32 @@ TEST(SynchronousAverageRevolutionSpread, RejectsSpansOfWrongSizesAndPlansWithout
   EXPECT_TRUE(stage.RevolutionSpread(x, plan, a, b).ok());
 }
 
+// A plan whose revolutions were changed after Plan() (more than its grid holds, or none) is
+// refused by every call that reads it, instead of reading past the grid.
+TEST(SynchronousAveragePlan, PlansWhoseRevolutionsDoNotFitTheirGridAreRefused) {
+  const std::size_t n = 8000;
+  const std::vector<double> x(n, 1.0);
+  auto stage = SynchronousAverage::Create(n, kFs, 4096).value();
+  SynchronousAveragePlan plan = stage.MakePlan();
+  ASSERT_TRUE(stage.Plan(kShaftHz, plan).ok());
+  const Result<CheckedSignal> checked = stage.Check(x);
+  ASSERT_TRUE(checked.ok());
+  SynchronousAverageRecord record = stage.MakeRecord();
+  std::vector<double> median(plan.points_per_revolution);
+  ASSERT_TRUE(stage.Process(x, plan, record).ok());
+  ASSERT_TRUE(stage.RevolutionMedian(checked.value(), plan, median).ok());
+  for (const std::size_t revolutions :
+       {std::size_t{0}, plan.grid.size() / plan.points_per_revolution + 1}) {
+    SCOPED_TRACE(revolutions);
+    SynchronousAveragePlan bad = plan;
+    bad.revolutions = revolutions;
+    const Status s = stage.Process(x, bad, record);
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.error().find("do not fit its grid"), std::string::npos) << s.error();
+    EXPECT_FALSE(stage.RevolutionMedian(checked.value(), bad, median).ok());
+  }
+}
+
 // A signal checked once serves every rate: the checked overloads give the bits of the span ones,
 // and what Check() refuses (a wrong length, a non-finite sample) is named as Process() names it.
 TEST(SynchronousAverageCheckedSignal, ServesEveryRateWithTheBitsOfTheSpanCalls) {
