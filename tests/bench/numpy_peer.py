@@ -378,17 +378,24 @@ def harmonic_indicator(ses, bin_hz, fc):
 # Synchronous average and condition indicators (core/dsp/synchronous_average.h,
 # core/diagnosis/gear_condition_indicators.h), batched over signals.
 
+def cubic_stencils(u, length):
+    """The cubic stencil at each position u >= 0 of a signal of `length` samples
+    (cubic_interpolation.h's MakeCubicStencil): its first sample and its four Lagrange weights
+    (len(u), 4)."""
+    i = u.astype(np.int64)
+    first = np.minimum(np.where(i == 0, 0, i - 1), length - 4)
+    t = u - first
+    a, b, c = t - 1.0, t - 2.0, t - 3.0
+    return first, np.stack([-a * b * c / 6.0, t * b * c / 2.0, -t * a * c / 2.0,
+                            t * a * b / 6.0], axis=1)
+
+
 def tsa_plan(n, fs, shaft_hz, max_points):
     spr = fs / shaft_hz
     whole = int(np.floor((n - 1) / spr))
     m = max_points if spr >= max_points else max(4, 1 << int(np.ceil(np.log2(np.ceil(spr)))))
-    u = np.arange(whole * m) * (spr / m)
-    i = u.astype(np.int64)
-    first = np.minimum(np.where(i == 0, 0, i - 1), n - 4)
-    t = u - first
-    a, b, c = t - 1.0, t - 2.0, t - 3.0
     # Four Lagrange weights per point (RM, 4) and the samples they read, flattened (4 RM).
-    w = np.stack([-a * b * c / 6.0, t * b * c / 2.0, -t * a * c / 2.0, t * a * b / 6.0], axis=1)
+    first, w = cubic_stencils(np.arange(whole * m) * (spr / m), n)
     taps = (first[:, None] + np.arange(4)).ravel()
     return dict(m=m, revolutions=whole, taps=taps, w=w, nyquist_order=0.5 * spr)
 
@@ -444,11 +451,7 @@ def periodic_read(plan, n, shaft_hz, fs):
     their cubic Lagrange weights (n, 4) each (PlanPeriodicRead)."""
     m = plan["m"]
     x = np.arange(n) * (shaft_hz / fs * m)
-    u = x - m * np.floor(x / m) + 1.0
-    first = np.minimum(np.maximum(u.astype(np.int64) - 1, 0), m + 3 - 4)
-    t = u - first
-    a, b, c = t - 1.0, t - 2.0, t - 3.0
-    w = np.stack([-a * b * c / 6.0, t * b * c / 2.0, -t * a * c / 2.0, t * a * b / 6.0], axis=1)
+    first, w = cubic_stencils(x - m * np.floor(x / m) + 1.0, m + 3)
     return first[:, None] + np.arange(4), w
 
 
