@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "core/common/simd_clones.h"
 #include "core/dsp/cubic_interpolation.h"
 #include "core/dsp/input_checks.h"
 
@@ -46,6 +47,40 @@ inline void Legendre(std::size_t i0, double last, int degree, LegendreChunk& p) 
       pn[j] = ((2.0 * k + 1.0) * p1[j] * pk[j] - k * pm[j]) / (k + 1.0);
     }
   }
+}
+
+// The weighted fit's sums over a block, sample by sample in the block's order, for the samples
+// whose weight is not zero: column b < terms of `normal` (kBasis x kBasis, column-major) gains
+// (w P_b) P_a in every row a, `rhs` gains (w y) P_a, and the weights' sum is returned.
+// `legendre` holds P_0..P_8 of each sample (kBasis values, zeros past `terms`). Each entry adds
+// its terms in the order of a scalar loop over the samples; the rows a >= b of those columns
+// are the ones the fit reads (the others hold the same products in the other order, or zeros).
+// Why a kernel: within one sample the rows of a column are independent, which the wide-vector
+// clones take eight at a time, and every clone rounds as the baseline one (simd_clones.h);
+// entry by entry this loop was a third of a Track().
+GEARPATH_SIMD_CLONES
+double AccumulateFit(const double* __restrict legendre, const double* __restrict weight,
+                     const double* __restrict phase, std::size_t n, int terms,
+                     double* __restrict normal, double* __restrict rhs) noexcept {
+  static_assert(kBasis == 9, "rows 0..7 as one vector, row 8 on its own");
+  const auto rows = static_cast<std::size_t>(terms);
+  double weight_sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = weight[i];
+    if (w == 0.0) continue;
+    const double* q = legendre + i * kBasis;
+    for (std::size_t b = 0; b < rows; ++b) {
+      const double wb = w * q[b];
+      double* column = normal + b * kBasis;
+      for (std::size_t a = 0; a < 8; ++a) column[a] += wb * q[a];
+      column[8] += wb * q[8];
+    }
+    const double wy = w * phase[i];
+    for (std::size_t a = 0; a < 8; ++a) rhs[a] += wy * q[a];
+    rhs[8] += wy * q[8];
+    weight_sum += w;
+  }
+  return weight_sum;
 }
 
 std::string Hz(double v) { return std::to_string(v) + " Hz"; }
@@ -117,12 +152,16 @@ Result<OrderTracker> OrderTracker::Create(std::size_t block_length, double sampl
   t.next_.assign(block_length, 0.0);
   const auto terms = static_cast<std::size_t>(options.degree + 1);
   const std::size_t chunks = (block_length + kLegendreLanes - 1) / kLegendreLanes;
-  t.legendre_.resize(chunks * terms * kLegendreLanes);
+  t.legendre_.assign(block_length * kBasis, 0.0);
   LegendreChunk p{};
   for (std::size_t c = 0; c < chunks; ++c) {
-    Legendre(c * kLegendreLanes, static_cast<double>(block_length - 1), options.degree, p);
-    std::copy_n(p.begin(), terms * kLegendreLanes,
-                t.legendre_.begin() + static_cast<std::ptrdiff_t>(c * terms * kLegendreLanes));
+    const std::size_t i0 = c * kLegendreLanes;
+    Legendre(i0, static_cast<double>(block_length - 1), options.degree, p);
+    for (std::size_t j = 0; j < kLegendreLanes && i0 + j < block_length; ++j) {
+      for (std::size_t a = 0; a < terms; ++a) {
+        t.legendre_[(i0 + j) * kBasis + a] = p[a * kLegendreLanes + j];
+      }
+    }
   }
   return t;
 }
@@ -236,48 +275,33 @@ Result<OrderTrackResult> OrderTracker::Run(std::span<const double> signal, doubl
     const std::span<const std::complex<double>> z = backward_->complex_out();
     double previous = std::arg(z[0]);
     double unwrapped = previous;
-    for (std::size_t i = 0; i < n_; ++i) {
+    // The last `edge` samples weigh nothing and their phase is overwritten by the fit unread:
+    // no std::arg for them.
+    const std::size_t weighted_end = n_ - edge;
+    for (std::size_t i = 0; i < weighted_end; ++i) {
       const double a = std::arg(z[i]);
       double d = a - previous;
       // Under half a turn round() is 0 and d stays as it is (bit for bit): std::round is a
       // library call on baseline x86-64, and nearly every step of a tracked carrier is small.
-      const double turns = d / kTwoPi;
-      if (std::abs(turns) >= 0.5) d -= kTwoPi * std::round(turns);
+      // A step under 3.14 rad is under half a turn however d / 2 pi rounds: no division.
+      if (std::abs(d) >= 3.14) {
+        const double turns = d / kTwoPi;
+        if (std::abs(turns) >= 0.5) d -= kTwoPi * std::round(turns);
+      }
       unwrapped += i == 0 ? 0.0 : d;
       previous = a;
       phase_[i] = unwrapped - offset_slope * static_cast<double>(i);
-      weight_[i] = (i < edge || i + edge >= n_) ? 0.0 : std::norm(z[i]);
+      weight_[i] = i < edge ? 0.0 : std::norm(z[i]);
     }
-    // 4. Weighted least-squares Legendre fit.
-    // The lower triangle of the normal matrix, sum of w p p^T, and the right-hand side over
-    // the weighted samples, on the (degree + 1) polynomials only.
+    std::fill(weight_.begin() + static_cast<std::ptrdiff_t>(weighted_end), weight_.end(), 0.0);
+    // 4. Weighted least-squares Legendre fit: the normal matrix (sum of w p p^T, its lower
+    // triangle) and the right-hand side over the weighted samples, on the (degree + 1)
+    // polynomials only.
     Normal normal = Normal::Zero();
     Vector rhs = Vector::Zero();
-    double weight_sum = 0.0;
     const int terms = degree + 1;
-    const auto chunk_size = static_cast<std::size_t>(terms) * kLegendreLanes;
-    for (std::size_t i0 = 0; i0 < n_; i0 += kLegendreLanes) {
-      const std::size_t lanes = std::min(kLegendreLanes, n_ - i0);
-      bool any = false;
-      for (std::size_t j = 0; j < lanes; ++j) any = any || weight_[i0 + j] != 0.0;
-      if (!any) continue;
-      const double* p = legendre_.data() + (i0 / kLegendreLanes) * chunk_size;
-      for (std::size_t j = 0; j < lanes; ++j) {
-        const double w = weight_[i0 + j];
-        if (w == 0.0) continue;
-        for (int b = 0; b < terms; ++b) {
-          const double wb = w * p[static_cast<std::size_t>(b) * kLegendreLanes + j];
-          for (int a = b; a < terms; ++a) {
-            normal(a, b) += wb * p[static_cast<std::size_t>(a) * kLegendreLanes + j];
-          }
-        }
-        const double wy = w * phase_[i0 + j];
-        for (int a = 0; a < terms; ++a) {
-          rhs(a) += wy * p[static_cast<std::size_t>(a) * kLegendreLanes + j];
-        }
-        weight_sum += w;
-      }
-    }
+    const double weight_sum = AccumulateFit(legendre_.data(), weight_.data(), phase_.data(), n_,
+                                            terms, normal.data(), rhs.data());
     if (!(weight_sum > 0.0)) {
       return Fail(messages, [&] {
         return std::string(kStage) + ": the carrier's envelope is zero inside the block";
@@ -297,22 +321,13 @@ Result<OrderTrackResult> OrderTracker::Run(std::span<const double> signal, doubl
       coef -= n_odd * (odd.dot(coef) / odd.dot(n_odd));
     }
     double residual = 0.0;
-    std::array<double, kLegendreLanes> fit{};
-    for (std::size_t i0 = 0; i0 < n_; i0 += kLegendreLanes) {
-      const std::size_t lanes = std::min(kLegendreLanes, n_ - i0);
-      const double* p = legendre_.data() + (i0 / kLegendreLanes) * chunk_size;
-      fit.fill(0.0);
-      for (int a = 0; a < terms; ++a) {
-        const double c = coef(a);
-        const double* pa = p + static_cast<std::size_t>(a) * kLegendreLanes;
-        for (std::size_t j = 0; j < kLegendreLanes; ++j) fit[j] += c * pa[j];
-      }
-      for (std::size_t j = 0; j < lanes; ++j) {
-        const std::size_t i = i0 + j;
-        const double w = weight_[i];
-        if (w != 0.0) residual += w * (phase_[i] - fit[j]) * (phase_[i] - fit[j]);
-        phase_[i] = fit[j];
-      }
+    for (std::size_t i = 0; i < n_; ++i) {
+      const double* q = legendre_.data() + i * kBasis;
+      double fit = 0.0;
+      for (int a = 0; a < terms; ++a) fit += coef(a) * q[a];
+      const double w = weight_[i];
+      if (w != 0.0) residual += w * (phase_[i] - fit) * (phase_[i] - fit);
+      phase_[i] = fit;
     }
     result.phase_residual_rad = std::sqrt(residual / weight_sum);
     if (!std::isfinite(result.phase_residual_rad) ||

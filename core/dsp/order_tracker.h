@@ -124,10 +124,10 @@ class OrderTracker {
   std::vector<double> phase_;
   std::vector<double> weight_;
   std::vector<double> next_;
-  // P_0..P_degree at every sample, chunk by chunk of 8 samples (order_tracker.cc's
-  // LegendreChunk layout, degree + 1 rows per chunk): they depend only on the block length and
-  // the degree, so they are computed once here instead of twice per iteration of every Track
-  // (a chain of divisions per sample). 0.9 MB at N = 16 000, degree 6.
+  // P_0..P_degree at every sample, sample by sample (kMaxDegree + 1 values each, zeros past
+  // the degree, so that the fit's sums load one sample's values as a vector): they depend only
+  // on the block length and the degree, so they are computed once here instead of twice per
+  // iteration of every Track (a chain of divisions per sample). 1.15 MB at N = 16 000.
   std::vector<double> legendre_;
 };
 
