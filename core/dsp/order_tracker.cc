@@ -11,6 +11,7 @@
 #include "core/common/simd_clones.h"
 #include "core/dsp/cubic_interpolation.h"
 #include "core/dsp/input_checks.h"
+#include "core/dsp/phase_angles.h"
 
 namespace gearpath {
 namespace {
@@ -273,13 +274,14 @@ Result<OrderTrackResult> OrderTracker::Run(std::span<const double> signal, doubl
     backward_->Execute();
     // 3. Unwrapped phase error and its weight (envelope power, edges left out).
     const std::span<const std::complex<double>> z = backward_->complex_out();
-    double previous = std::arg(z[0]);
-    double unwrapped = previous;
     // The last `edge` samples weigh nothing and their phase is overwritten by the fit unread:
-    // no std::arg for them.
+    // no angle for them.
     const std::size_t weighted_end = n_ - edge;
+    PhaseAngles(z.first(weighted_end), std::span<double>(phase_).first(weighted_end));
+    double previous = phase_[0];
+    double unwrapped = previous;
     for (std::size_t i = 0; i < weighted_end; ++i) {
-      const double a = std::arg(z[i]);
+      const double a = phase_[i];
       double d = a - previous;
       // Under half a turn round() is 0 and d stays as it is (bit for bit): std::round is a
       // library call on baseline x86-64, and nearly every step of a tracked carrier is small.

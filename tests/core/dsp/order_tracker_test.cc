@@ -113,6 +113,25 @@ TEST(OrderTrackerTest, FollowsASinusoidalDriftToTheAnalyticWarp) {
   }
 }
 
+// The phase is taken only where the fit weighs it, four, two and one value at a time
+// (PhaseAngles; its own test checks the angles): weighted stretches of every length modulo 4
+// track as well as the default one.
+TEST(OrderTrackerTest, TracksWhateverTheWeightedStretchsLength) {
+  const std::vector<double> x = GearSignal(kDrift, 1.3, 0.0, 0.05);
+  const std::vector<double> truth = TrueWarp(kDrift, 1.3);
+  for (const double edge : {0.05, 0.0502, 0.0503, 0.0504}) {  // 7600 .. 7593 weighted samples
+    OrderTrackerOptions options;
+    options.edge_fraction = edge;
+    auto tracker = OrderTracker::Create(kN, kFs, options);
+    ASSERT_TRUE(tracker.ok()) << tracker.error();
+    std::vector<double> warp(kN);
+    const auto r = tracker->Track(x, kTeeth * kShaftHz, 3.5, warp);
+    ASSERT_TRUE(r.ok()) << r.error();
+    EXPECT_LT(MaxErrorInside(warp, truth), 0.1) << "edge fraction " << edge;
+    EXPECT_LT(r->phase_residual_rad, 0.1) << "edge fraction " << edge;
+  }
+}
+
 TEST(OrderTrackerTest, TrackedAverageKeepsTheMeshHarmonicsThatDriftSmears) {
   const std::vector<double> x = GearSignal(kDrift, 0.7, 0.0, 0.05);
   std::vector<double> warp;
