@@ -1,6 +1,9 @@
 #include "core/dsp/grid_resampler.h"
 
+#include <algorithm>
 #include <cstdint>
+
+#include "core/common/simd_clones.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -124,6 +127,41 @@ Wide WidestSupported() noexcept {
 #endif
 
 }  // namespace
+
+namespace {
+
+// MakeCubicStencil's arithmetic on arrays (its terms in its order, no fused multiply-add), in
+// 32-bit indices, which the vector units convert to and from doubles; clamped like the callers'
+// std::clamp (NaN aside, which no caller passes).
+GEARPATH_SIMD_CLONES
+void Stencils(std::int32_t n, const double* __restrict position, std::size_t count,
+              std::uint32_t* __restrict first, double* __restrict w0, double* __restrict w1,
+              double* __restrict w2, double* __restrict w3) noexcept {
+  const double last = static_cast<double>(n - 1);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double u = std::min(std::max(position[k], 0.0), last);
+    const auto i = static_cast<std::int32_t>(u);  // floor, u >= 0
+    const std::int32_t f = std::min(std::max(i - 1, 0), n - 4);
+    const double t = u - static_cast<double>(f);
+    const double a = t - 1.0;
+    const double b = t - 2.0;
+    const double c = t - 3.0;
+    first[k] = static_cast<std::uint32_t>(f);
+    w0[k] = -a * b * c / 6.0;
+    w1[k] = t * b * c / 2.0;
+    w2[k] = t * a * c / 2.0;
+    w3[k] = t * a * b / 6.0;
+  }
+}
+
+}  // namespace
+
+void SetCubicStencils(std::size_t n, const double* position, std::size_t count, CubicGrid& grid,
+                      std::size_t begin) noexcept {
+  Stencils(static_cast<std::int32_t>(n), position, count, grid.first.data() + begin,
+           grid.w0.data() + begin, grid.w1.data() + begin, grid.w2.data() + begin,
+           grid.w3.data() + begin);
+}
 
 void ResampleOnGrid(const double* x, std::size_t n, const CubicGridView& grid, std::size_t begin,
                     std::size_t count, double* out, bool add) noexcept {

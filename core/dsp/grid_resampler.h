@@ -54,6 +54,16 @@ struct CubicGrid {
   }
 };
 
+// Grid points begin .. begin + count - 1 read a signal of n samples (4 <= n < 2^31) at
+// position[k] clamped to [0, n - 1] (finite positions): the stencils of MakeCubicStencil, bit
+// for bit, many at a time (vectorised; one point at a time, filling a grid was 1-2 % of a
+// reference block in each of its three users). The grid holds at least begin + count points.
+void SetCubicStencils(std::size_t n, const double* position, std::size_t count, CubicGrid& grid,
+                      std::size_t begin = 0) noexcept;
+// How many positions a caller that computes them point by point gathers (on its stack) per
+// SetCubicStencils call.
+inline constexpr std::size_t kPositionChunk = 256;
+
 // out[m] = x read at grid point begin + m, for m < count (out[m] += it with `add`). x holds n
 // samples and every stencil lies inside it. Each value has the bits of ApplyCubicStencil at that
 // point, whichever instruction set runs it: the wide paths keep its terms and their order and

@@ -9,7 +9,6 @@
 #include <utility>
 
 #include "core/common/simd_clones.h"
-#include "core/dsp/cubic_interpolation.h"
 #include "core/dsp/input_checks.h"
 #include "core/dsp/phase_angles.h"
 
@@ -148,6 +147,7 @@ Result<OrderTracker> OrderTracker::Create(std::size_t block_length, double sampl
   if (!backward) return Error{what + backward.error()};
   t.forward_.emplace(std::move(forward).value());
   t.backward_.emplace(std::move(backward).value());
+  t.grid_.Resize(block_length);
   t.phase_.assign(block_length, 0.0);
   t.weight_.assign(block_length, 0.0);
   t.next_.assign(block_length, 0.0);
@@ -226,9 +226,8 @@ Result<OrderTrackResult> OrderTracker::Run(std::span<const double> signal, doubl
   for (int it = 0; it < options_.iterations; ++it) {
     // 1. The signal at uniform angle (as far as the warp knows it).
     std::span<double> y = forward_->real_in();
-    for (std::size_t i = 0; i < n_; ++i) {
-      y[i] = InterpolateCubic(signal.data(), n_, std::clamp(warp[i], 0.0, last));
-    }
+    SetCubicStencils(n_, warp.data(), n_, grid_);  // clamped to the block
+    ResampleOnGrid(signal.data(), n_, grid_.View(), 0, n_, y.data(), /*add=*/false);
     forward_->Execute();
     // 2. The carrier's complex envelope: its band shifted down by k_c bins.
     const std::span<const std::complex<double>> bins = forward_->complex_out();

@@ -51,6 +51,7 @@
 
 #include "core/common/result.h"
 #include "core/dsp/fft_plan.h"
+#include "core/dsp/grid_resampler.h"
 
 namespace gearpath {
 
@@ -121,6 +122,7 @@ class OrderTracker {
   OrderTrackerOptions options_;
   std::optional<FftPlan> forward_;   // r2c, n
   std::optional<FftPlan> backward_;  // c2c backward, n
+  CubicGrid grid_;  // where each iteration reads the signal: the warp's stencils
   std::vector<double> phase_;
   std::vector<double> weight_;
   std::vector<double> next_;

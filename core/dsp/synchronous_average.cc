@@ -1,6 +1,7 @@
 #include "core/dsp/synchronous_average.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <numbers>
@@ -157,10 +158,15 @@ Status SynchronousAverage::Plan(double shaft_hz, SynchronousAveragePlan& plan,
     }
   }
   const std::size_t points = revolutions * m_points;
-  for (std::size_t p = 0; p < points; ++p) {
-    const double at = static_cast<double>(p) * step;
-    const double u = warp.empty() ? at : std::clamp(WarpAt(warp, at), 0.0, last);
-    plan.grid.Set(p, MakeCubicStencil(block_length_, u));
+  // The positions a chunk at a time, their stencils (clamped to the block) many at a time.
+  std::array<double, kPositionChunk> position;
+  for (std::size_t p0 = 0; p0 < points; p0 += kPositionChunk) {
+    const std::size_t count = std::min(kPositionChunk, points - p0);
+    for (std::size_t k = 0; k < count; ++k) {
+      const double at = static_cast<double>(p0 + k) * step;
+      position[k] = warp.empty() ? at : WarpAt(warp, at);
+    }
+    SetCubicStencils(block_length_, position.data(), count, plan.grid, p0);
   }
   plan.points_per_revolution = m_points;
   plan.revolutions = revolutions;

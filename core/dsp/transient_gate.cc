@@ -1,6 +1,7 @@
 #include "core/dsp/transient_gate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstdint>
@@ -237,13 +238,19 @@ bool PlanPeriodicRead(std::size_t points, double revolutions_per_sample,
   const double points_per_sample = revolutions_per_sample * static_cast<double>(points);
   const double revolution = static_cast<double>(points);
   const double inv_revolution = 1.0 / revolution;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double s = nominal.empty() ? static_cast<double>(i) : nominal[i];
-    const double x = s * points_per_sample;
-    const double pos = x - revolution * std::floor(x * inv_revolution);
-    // The stencil on SubtractPeriodicPart's scratch, which holds the revolution from its last
-    // value (position 0) to its second one again (position M + 2): position pos + 1.
-    plan.grid.Set(i, MakeCubicStencil(points + 3, pos + 1.0));
+  // The stencils on SubtractPeriodicPart's scratch, which holds the revolution from its last
+  // value (position 0) to its second one again (position M + 2): position pos + 1.
+  std::array<double, kPositionChunk> position;
+  for (std::size_t i0 = 0; i0 < n; i0 += kPositionChunk) {
+    const std::size_t count = std::min(kPositionChunk, n - i0);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = i0 + k;
+      const double s = nominal.empty() ? static_cast<double>(i) : nominal[i];
+      const double x = s * points_per_sample;
+      const double pos = x - revolution * std::floor(x * inv_revolution);
+      position[k] = pos + 1.0;
+    }
+    SetCubicStencils(points + 3, position.data(), count, plan.grid, i0);
   }
   plan.points = points;
   return true;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -75,6 +76,40 @@ TEST(GridResampler, EveryPointHasTheBitsOfTheScalarStencil) {
         ASSERT_EQ(sum[m], 0.25 + expected)
             << "grid " << g << ", begin " << begin << ", point " << m;
       }
+    }
+  }
+}
+
+// SetCubicStencils (vectorised, 32-bit indices) against MakeCubicStencil point by point, bit
+// for bit: positions across the block, on whole samples, at both ends (where the stencil moves
+// inwards), outside it (clamped first, as its callers clamped), and at counts and offsets that
+// leave every clone a tail.
+TEST(GridResampler, SetStencilsHasTheBitsOfMakeCubicStencil) {
+  for (const std::size_t n : {std::size_t{4}, std::size_t{5}, std::size_t{3001}}) {
+    const double last = static_cast<double>(n - 1);
+    std::vector<double> positions = {0.0, -0.0, 1.0, 0.5, last, last - 0.25, last - 1.0,
+                                     last - 2.0, -3.5, last + 0.75, 1e9, -1e9};
+    const std::vector<double> noise = dsp_test::WhiteNoise(997, 1.0, 5);
+    for (std::size_t k = 0; k < noise.size(); ++k) {
+      positions.push_back(std::fmod(std::abs(noise[k]) * 1000.0 + static_cast<double>(k), last));
+    }
+    for (const std::size_t begin : {std::size_t{0}, std::size_t{3}}) {
+      const std::size_t count = positions.size() - begin;
+      CubicGrid grid;
+      grid.Resize(begin + count + 1);
+      grid.Set(begin + count, CubicStencil{1, 2.0, 3.0, 4.0, 5.0});  // past the count
+      SetCubicStencils(n, positions.data() + begin, count, grid, begin);
+      for (std::size_t k = 0; k < count; ++k) {
+        const CubicStencil s = MakeCubicStencil(n, std::clamp(positions[begin + k], 0.0, last));
+        const std::size_t p = begin + k;
+        ASSERT_EQ(grid.first[p], s.first) << "n " << n << ", position " << positions[p];
+        ASSERT_EQ(grid.w0[p], s.w0) << "n " << n << ", position " << positions[p];
+        ASSERT_EQ(grid.w1[p], s.w1) << "n " << n << ", position " << positions[p];
+        ASSERT_EQ(grid.w2[p], s.w2) << "n " << n << ", position " << positions[p];
+        ASSERT_EQ(grid.w3[p], s.w3) << "n " << n << ", position " << positions[p];
+      }
+      EXPECT_EQ(grid.first[begin + count], 1u);
+      EXPECT_EQ(grid.w3[begin + count], 5.0);
     }
   }
 }
