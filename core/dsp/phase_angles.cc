@@ -9,15 +9,20 @@
 // call, each dispatched inside glibc to the CPU's best implementation.
 // NOLINTBEGIN(readability-identifier-naming)
 extern "C" __m128d _ZGVbN2vv_atan2(__m128d y, __m128d x);
-extern "C" __m256d _ZGVdN4vv_atan2(__m256d y, __m256d x);
-// NOLINTEND(readability-identifier-naming)
 #define GEARPATH_VECTOR_ATAN2 1
+#if !defined(__clang__)
+// Not with clang (the sanitizer and fuzz builds): clang 14 passes these __m256d arguments in
+// memory instead of in ymm registers as the vector ABI requires (test PhaseAngles caught it).
+extern "C" __attribute__((target("avx2"))) __m256d _ZGVdN4vv_atan2(__m256d y, __m256d x);
+#define GEARPATH_VECTOR_ATAN2_AVX2 1
+#endif
+// NOLINTEND(readability-identifier-naming)
 #endif
 
 namespace gearpath {
 namespace {
 
-#ifdef GEARPATH_VECTOR_ATAN2
+#ifdef GEARPATH_VECTOR_ATAN2_AVX2
 // The first count - count % 4 angles, four per call; returns how many.
 __attribute__((target("avx2"))) std::size_t FourAtATime(const double* v, std::size_t count,
                                                        double* angle) noexcept {
@@ -40,11 +45,14 @@ __attribute__((target("avx2"))) std::size_t FourAtATime(const double* v, std::si
 void PhaseAngles(std::span<const std::complex<double>> z, std::span<double> angle) noexcept {
   const std::size_t count = std::min(z.size(), angle.size());
 #ifdef GEARPATH_VECTOR_ATAN2
-  static const bool avx2 = __builtin_cpu_supports("avx2");
   // (re, im) pairs: the array layout [complex.numbers.general] guarantees.
   const double* v = reinterpret_cast<const double*>(z.data());
   double* out = angle.data();
-  std::size_t i = avx2 ? FourAtATime(v, count, out) : 0;
+  std::size_t i = 0;
+#ifdef GEARPATH_VECTOR_ATAN2_AVX2
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) i = FourAtATime(v, count, out);
+#endif
   for (; i + 2 <= count; i += 2) {
     const __m128d first = _mm_loadu_pd(v + 2 * i);
     const __m128d second = _mm_loadu_pd(v + 2 * i + 2);
