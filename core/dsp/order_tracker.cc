@@ -226,8 +226,13 @@ Result<OrderTrackResult> OrderTracker::Run(std::span<const double> signal, doubl
   for (int it = 0; it < options_.iterations; ++it) {
     // 1. The signal at uniform angle (as far as the warp knows it).
     std::span<double> y = forward_->real_in();
-    SetCubicStencils(n_, warp.data(), n_, grid_);  // clamped to the block
-    ResampleOnGrid(signal.data(), n_, grid_.View(), 0, n_, y.data(), /*add=*/false);
+    if (it == 0) {
+      // The identity warp: a cubic stencil on a whole sample is that sample, bit for bit.
+      std::copy(signal.begin(), signal.end(), y.begin());
+    } else {
+      SetCubicStencils(n_, warp.data(), n_, grid_);  // clamped to the block
+      ResampleOnGrid(signal.data(), n_, grid_.View(), 0, n_, y.data(), /*add=*/false);
+    }
     forward_->Execute();
     // 2. The carrier's complex envelope: its band shifted down by k_c bins.
     const std::span<const std::complex<double>> bins = forward_->complex_out();
