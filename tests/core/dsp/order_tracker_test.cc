@@ -116,7 +116,7 @@ TEST(OrderTrackerTest, FollowsASinusoidalDriftToTheAnalyticWarp) {
 // The phase is taken only where the fit weighs it, four, two and one value at a time
 // (PhaseAngles; its own test checks the angles): weighted stretches of every length modulo 4
 // track as well as the default one.
-TEST(OrderTrackerTest, TracksWhateverTheWeightedStretchsLength) {
+TEST(OrderTrackerTest, TracksWhateverTheLengthOfItsWeightedStretch) {
   const std::vector<double> x = GearSignal(kDrift, 1.3, 0.0, 0.05);
   const std::vector<double> truth = TrueWarp(kDrift, 1.3);
   for (const double edge : {0.05, 0.0502, 0.0503, 0.0504}) {  // 7600 .. 7593 weighted samples
