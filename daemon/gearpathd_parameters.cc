@@ -408,8 +408,9 @@ ParamSpec AnalysisSection() {
                        1000, 3),
                Number("mesh_separation",
                       "A mesh is named alone when its transfer-signature evidence leads the "
-                      "next mesh's by this factor; otherwise both meshes' gears are candidates.",
-                      1.0, 100.0, 1.1)})});
+                      "next mesh's by this factor (1: the leading mesh whenever any evidence "
+                      "rose); otherwise the close meshes' gears are candidates.",
+                      1.0, 100.0, 1.0)})});
 }
 
 ParamSpec MachineSpec() {

@@ -165,8 +165,10 @@ struct AnalysisOptions {
   double clear_level = 0.7;
   int clear_blocks = 3;
   // Mesh decision: the best mesh's evidence must exceed the next one's by this factor, else
-  // both meshes' gears are reported as candidates.
-  double mesh_separation = 1.1;
+  // both meshes' gears are reported as candidates. 1 (since 2026-11-29; 1.1 before): the
+  // leading mesh whenever any evidence rose, its lead shown in the confidence
+  // (docs/diagnosis.md section 13).
+  double mesh_separation = 1.0;
 };
 
 struct MachineSetup {
