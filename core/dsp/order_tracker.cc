@@ -22,30 +22,15 @@ constexpr std::size_t kFloorBins = 64;
 using Normal = Eigen::Matrix<double, kBasis, kBasis>;
 using Vector = Eigen::Matrix<double, kBasis, 1>;
 
-// Legendre polynomials P_0..P_degree at x in [-1, 1] (well conditioned normal equations), at
-// kLegendreLanes consecutive samples i0.. of a block whose last sample is `last` (x = 2 i /
-// last - 1): p[k * kLegendreLanes + j] = P_k at sample i0 + j. Lane by lane (the compiler
-// vectorises across the samples; each value has the bits of the scalar recurrence): the
-// recurrence's divisions are a dependency chain per sample, which one sample at a time made
-// them most of a Track().
-constexpr std::size_t kLegendreLanes = 8;
-using LegendreChunk = std::array<double, kBasis * kLegendreLanes>;
-
-inline void Legendre(std::size_t i0, double last, int degree, LegendreChunk& p) noexcept {
-  double* p0 = p.data();
-  for (std::size_t j = 0; j < kLegendreLanes; ++j) p0[j] = 1.0;
+// Legendre polynomials P_0..P_degree at sample i of a block whose last sample is `last`, at
+// x = 2 i / last - 1 in [-1, 1] (well conditioned normal equations), by their three-term
+// recurrence: p[k] = P_k.
+void Legendre(std::size_t i, double last, int degree, double* p) noexcept {
+  p[0] = 1.0;
   if (degree < 1) return;
-  double* p1 = p.data() + kLegendreLanes;
-  for (std::size_t j = 0; j < kLegendreLanes; ++j) {
-    p1[j] = 2.0 * static_cast<double>(i0 + j) / last - 1.0;
-  }
+  p[1] = 2.0 * static_cast<double>(i) / last - 1.0;
   for (int k = 1; k < degree; ++k) {
-    const double* pk = p.data() + static_cast<std::size_t>(k) * kLegendreLanes;
-    const double* pm = pk - kLegendreLanes;
-    double* pn = p.data() + static_cast<std::size_t>(k + 1) * kLegendreLanes;
-    for (std::size_t j = 0; j < kLegendreLanes; ++j) {
-      pn[j] = ((2.0 * k + 1.0) * p1[j] * pk[j] - k * pm[j]) / (k + 1.0);
-    }
+    p[k + 1] = ((2.0 * k + 1.0) * p[1] * p[k] - k * p[k - 1]) / (k + 1.0);
   }
 }
 
@@ -151,18 +136,10 @@ Result<OrderTracker> OrderTracker::Create(std::size_t block_length, double sampl
   t.phase_.assign(block_length, 0.0);
   t.weight_.assign(block_length, 0.0);
   t.next_.assign(block_length, 0.0);
-  const auto terms = static_cast<std::size_t>(options.degree + 1);
-  const std::size_t chunks = (block_length + kLegendreLanes - 1) / kLegendreLanes;
   t.legendre_.assign(block_length * kBasis, 0.0);
-  LegendreChunk p{};
-  for (std::size_t c = 0; c < chunks; ++c) {
-    const std::size_t i0 = c * kLegendreLanes;
-    Legendre(i0, static_cast<double>(block_length - 1), options.degree, p);
-    for (std::size_t j = 0; j < kLegendreLanes && i0 + j < block_length; ++j) {
-      for (std::size_t a = 0; a < terms; ++a) {
-        t.legendre_[(i0 + j) * kBasis + a] = p[a * kLegendreLanes + j];
-      }
-    }
+  for (std::size_t i = 0; i < block_length; ++i) {
+    Legendre(i, static_cast<double>(block_length - 1), options.degree,
+             t.legendre_.data() + i * kBasis);
   }
   return t;
 }
