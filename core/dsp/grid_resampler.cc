@@ -126,10 +126,6 @@ Wide WidestSupported() noexcept {
 }
 #endif
 
-}  // namespace
-
-namespace {
-
 // MakeCubicStencil's arithmetic on arrays (its terms in its order, no fused multiply-add), in
 // 32-bit indices, which the vector units convert to and from doubles; clamped like the callers'
 // std::clamp (NaN aside, which no caller passes).

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -60,9 +61,21 @@ struct CubicGrid {
 // reference block in each of its three users). The grid holds at least begin + count points.
 void SetCubicStencils(std::size_t n, const double* position, std::size_t count, CubicGrid& grid,
                       std::size_t begin = 0) noexcept;
-// How many positions a caller that computes them point by point gathers (on its stack) per
-// SetCubicStencils call.
-inline constexpr std::size_t kPositionChunk = 256;
+
+// SetCubicStencils for grid points 0 .. count - 1 at the positions position_at(p) (a callable
+// of the point index returning a double), gathered 256 at a time on the stack: for the plans
+// that compute each point's position as they go.
+template <typename PositionAt>
+void SetCubicStencilsAt(std::size_t n, std::size_t count, CubicGrid& grid,
+                        PositionAt&& position_at) noexcept {
+  constexpr std::size_t kChunk = 256;
+  std::array<double, kChunk> position;
+  for (std::size_t p0 = 0; p0 < count; p0 += kChunk) {
+    const std::size_t m = std::min(kChunk, count - p0);
+    for (std::size_t k = 0; k < m; ++k) position[k] = position_at(p0 + k);
+    SetCubicStencils(n, position.data(), m, grid, p0);
+  }
+}
 
 // out[m] = x read at grid point begin + m, for m < count (out[m] += it with `add`). x holds n
 // samples and every stencil lies inside it. Each value has the bits of ApplyCubicStencil at that

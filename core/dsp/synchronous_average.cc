@@ -1,7 +1,6 @@
 #include "core/dsp/synchronous_average.h"
 
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cmath>
 #include <numbers>
@@ -158,16 +157,11 @@ Status SynchronousAverage::Plan(double shaft_hz, SynchronousAveragePlan& plan,
     }
   }
   const std::size_t points = revolutions * m_points;
-  // The positions a chunk at a time, their stencils (clamped to the block) many at a time.
-  std::array<double, kPositionChunk> position;
-  for (std::size_t p0 = 0; p0 < points; p0 += kPositionChunk) {
-    const std::size_t count = std::min(kPositionChunk, points - p0);
-    for (std::size_t k = 0; k < count; ++k) {
-      const double at = static_cast<double>(p0 + k) * step;
-      position[k] = warp.empty() ? at : WarpAt(warp, at);
-    }
-    SetCubicStencils(block_length_, position.data(), count, plan.grid, p0);
-  }
+  // The stencils are clamped to the block.
+  SetCubicStencilsAt(block_length_, points, plan.grid, [&](std::size_t p) {
+    const double at = static_cast<double>(p) * step;
+    return warp.empty() ? at : WarpAt(warp, at);
+  });
   plan.points_per_revolution = m_points;
   plan.revolutions = revolutions;
   plan.shaft_hz = shaft_hz;

@@ -1,7 +1,6 @@
 #include "core/dsp/transient_gate.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <complex>
 #include <cstdint>
@@ -240,18 +239,12 @@ bool PlanPeriodicRead(std::size_t points, double revolutions_per_sample,
   const double inv_revolution = 1.0 / revolution;
   // The stencils on SubtractPeriodicPart's scratch, which holds the revolution from its last
   // value (position 0) to its second one again (position M + 2): position pos + 1.
-  std::array<double, kPositionChunk> position;
-  for (std::size_t i0 = 0; i0 < n; i0 += kPositionChunk) {
-    const std::size_t count = std::min(kPositionChunk, n - i0);
-    for (std::size_t k = 0; k < count; ++k) {
-      const std::size_t i = i0 + k;
-      const double s = nominal.empty() ? static_cast<double>(i) : nominal[i];
-      const double x = s * points_per_sample;
-      const double pos = x - revolution * std::floor(x * inv_revolution);
-      position[k] = pos + 1.0;
-    }
-    SetCubicStencils(points + 3, position.data(), count, plan.grid, i0);
-  }
+  SetCubicStencilsAt(points + 3, n, plan.grid, [&](std::size_t i) {
+    const double s = nominal.empty() ? static_cast<double>(i) : nominal[i];
+    const double x = s * points_per_sample;
+    const double pos = x - revolution * std::floor(x * inv_revolution);
+    return pos + 1.0;
+  });
   plan.points = points;
   return true;
 }
