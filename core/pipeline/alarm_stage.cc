@@ -41,7 +41,10 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
   const bool scored = ctx.out.score.limit_z > 0.0;
   AlarmEvidence evidence;
   evidence.learning = !scored && st.learning;
-  evidence.score = scored ? ctx.out.score.score : std::numeric_limits<double>::quiet_NaN();
+  // A block that was not judged (no speed, or a speed the baseline did not learn at) is no
+  // evidence either way: the alarm model holds its state.
+  evidence.score =
+      ctx.out.score.judged ? ctx.out.score.score : std::numeric_limits<double>::quiet_NaN();
   evidence.gear_vote =
       w.localisation.gear_mask != 0 ? static_cast<int>(w.localisation.gear_mask) : -1;
   const AlarmStatus& a = st.alarm->Update(evidence);
@@ -59,19 +62,37 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
   v.candidates.clear();
   v.candidate_names.clear();
   v.reason.Clear();
-  if (a.state == FaultState::kLearning) {
+  if (a.state == FaultState::kLearning && !scored) {  // a block of the baseline
     v.reason.Format("learning the healthy baseline (%d of %d blocks); no verdict yet",
                     ctx.out.score.baseline_blocks_learned, ctx.out.score.baseline_blocks_needed);
     return RejectReason::kNone;
   }
-  if (!(w.speed_hz > 0.0)) {
-    v.reason.Assign(
-        "input speed unknown (not in the block, not configured, no mesh lines to track): "
-        "indicators not computed, state held");
-    return RejectReason::kNone;
+  const bool judged = ctx.out.score.judged;
+  char buf[256];
+  std::size_t pos = 0;
+  const auto add = [&](const char* format, auto... args) {
+    if (pos + 1 >= sizeof buf) return;
+    const int n = std::snprintf(buf + pos, sizeof buf - pos, format, args...);
+    if (n > 0) pos = std::min(sizeof buf - 1, pos + static_cast<std::size_t>(n));
+  };
+  if (!judged) {
+    if (!(w.speed_hz > 0.0)) {
+      add("input speed unknown (not in the block, not configured, no mesh lines to track): "
+          "indicators not computed, state held");
+    } else {
+      add("input speed %.4g Hz outside the %.4g-%.4g Hz the healthy baseline was learned at "
+          "(+/- %.2g %%): not judged, state held",
+          w.speed_hz, ctx.out.score.baseline_speed_lo_hz, ctx.out.score.baseline_speed_hi_hz,
+          100.0 * m.setup.options.speed_tolerance);
+    }
+    // No fault, or no verdict yet (learned, but no block judged since).
+    if (a.state == FaultState::kNoFault || a.state == FaultState::kLearning) {
+      v.reason.Assign(std::string_view(buf, pos));
+      return RejectReason::kNone;
+    }
   }
   const double score = ctx.out.score.score;
-  if (a.state == FaultState::kNoFault) {
+  if (a.state == FaultState::kNoFault) {  // judged
     v.confidence = Clamp01(1.0 - score);
     v.reason.Format("every indicator within the healthy baseline (highest: %.*s of %.*s at "
                     "%.0f %% of its limit)",
@@ -102,6 +123,12 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
     }
     v.mesh = mesh;
   }
+  if (!judged) {  // the gears named while the state was raised; no confidence from this block
+    add(" -> ");
+    pos = AppendGears(buf, sizeof buf, pos, t, mask);
+    v.reason.Assign(std::string_view(buf, pos));
+    return RejectReason::kNone;
+  }
   // Confidence that the fault is among the candidates: how far over the limit the recent
   // blocks are, times how clearly the mesh was separated (1 when only one mesh was possible).
   const BlockWorkspace::Localisation& loc = w.localisation;
@@ -114,13 +141,6 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
           : 1.0;
   v.confidence = Clamp01((0.5 * strength + 0.5 * persistence) * (0.5 + 0.5 * separation));
 
-  char buf[256];
-  std::size_t pos = 0;
-  const auto add = [&](const char* format, auto... args) {
-    if (pos + 1 >= sizeof buf) return;
-    const int n = std::snprintf(buf + pos, sizeof buf - pos, format, args...);
-    if (n > 0) pos = std::min(sizeof buf - 1, pos + static_cast<std::size_t>(n));
-  };
   add("%.*s of %.*s at %.1fx its limit at shaft rate %.3g Hz (%d of %d blocks)",
       static_cast<int>(ctx.out.score.indicator.size()), ctx.out.score.indicator.data(),
       static_cast<int>(ctx.out.score.signal.size()), ctx.out.score.signal.data(), score,

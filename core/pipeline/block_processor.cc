@@ -269,6 +269,8 @@ void BlockProcessor::Impl::ResetLearning() noexcept {
   std::fill(state.group_excess_sum.begin(), state.group_excess_sum.end(), 0.0);
   std::fill(state.mesh_evidence_sum.begin(), state.mesh_evidence_sum.end(), 0.0);
   state.order_tracking_mode = -1;
+  state.baseline_speed_lo_hz = 0.0;
+  state.baseline_speed_hi_hz = 0.0;
 }
 
 BlockProcessor::BlockProcessor(std::unique_ptr<Impl> impl) noexcept : impl_(std::move(impl)) {}
@@ -497,6 +499,8 @@ LearnedState BlockProcessor::ExportLearnedState() const {
   s.group_excess_sum = st.group_excess_sum;
   s.mesh_evidence_sum = st.mesh_evidence_sum;
   s.order_tracking_mode = st.order_tracking_mode;
+  s.baseline_speed_lo_hz = st.baseline_speed_lo_hz;
+  s.baseline_speed_hi_hz = st.baseline_speed_hi_hz;
   return s;
 }
 
@@ -559,6 +563,13 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
   if (s.residual_variance_blocks < 0 || s.criterion_blocks < 0) {
     return Error{"negative block counts"};
   }
+  // Both 0 (saved before the range existed) or 0 < lo <= hi, finite.
+  const bool no_range = s.baseline_speed_lo_hz == 0.0 && s.baseline_speed_hi_hz == 0.0;
+  if (!no_range && !(s.baseline_speed_lo_hz > 0.0 && s.baseline_speed_lo_hz <= s.baseline_speed_hi_hz &&
+                     std::isfinite(s.baseline_speed_hi_hz))) {
+    return Error{fmt::format("baseline speed range {}-{} Hz is not 0 < low <= high",
+                             s.baseline_speed_lo_hz, s.baseline_speed_hi_hz)};
+  }
   if (s.learning == indicator->learned()) {
     return Error{"learning flag contradicts the indicator baseline"};
   }
@@ -584,6 +595,8 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
     st.mesh_evidence_sum = s.mesh_evidence_sum;
   }
   st.order_tracking_mode = s.order_tracking_mode;
+  st.baseline_speed_lo_hz = s.baseline_speed_lo_hz;
+  st.baseline_speed_hi_hz = s.baseline_speed_hi_hz;
   return Status::Ok();
 }
 

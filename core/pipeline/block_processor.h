@@ -156,6 +156,14 @@ struct AnalysisOptions {
   // its largest deviation over the baseline blocks / 3, so no healthy baseline block would have
   // scored above z = 3 (about half the limit). Off = median, robust scale and the floor only.
   bool tail_guard = true;
+  // Operating speed: a block is judged only when its input speed lies within the speeds the
+  // baseline was learned at, widened by this fraction either way (the speed reading's own
+  // jitter); outside them the block is not scored and the state is held (docs/diagnosis.md
+  // section 10). Why: the baseline holds the machine's response at those speeds. On the tuning
+  // families a healthy machine learned at one constant speed and judged after a step of 1 %
+  // was over its limit in 59 % of its blocks, after a step of 0.01 % in 12 %, of 0.003 % in
+  // 1.7 %, of 0.001 % in none.
+  double speed_tolerance = 2e-5;
   // Persistence (k of the last n blocks), hysteresis and clear delay (core/diagnosis/
   // alarm_model.h): suspected after suspect_k exceedances, alarm after alarm_k, cleared after
   // clear_blocks blocks under clear_level x the limit.
@@ -252,6 +260,11 @@ struct BlockScore {
   int window = 0;              // alarm window length, blocks
   int baseline_blocks_learned = 0;
   int baseline_blocks_needed = 0;
+  // Scored against the baseline: learned, the speed known and within the baseline's speed
+  // range (AnalysisOptions::speed_tolerance). A block that is not judged holds the state.
+  bool judged = false;
+  double baseline_speed_lo_hz = 0.0;  // input speeds the baseline was learned at (0 while
+  double baseline_speed_hi_hz = 0.0;  // learning, or unknown for a state saved before them)
 };
 
 struct BlockRegularisation {

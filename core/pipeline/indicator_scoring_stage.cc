@@ -10,6 +10,20 @@
 #include "core/pipeline/machine_state.h"
 
 namespace gearpath {
+namespace {
+
+// The baseline holds the response at the speeds it learned at: the housing's transfer moves
+// with the mesh frequency, so a block at another speed is not comparable with it.
+bool WithinBaselineSpeeds(const StageContext& ctx) noexcept {
+  const MachineState& st = ctx.state;
+  if (!(st.baseline_speed_hi_hz > 0.0)) return true;  // a state saved before the range existed
+  const double tolerance = ctx.machine.setup.options.speed_tolerance;
+  const double speed = ctx.work.speed_hz;
+  return speed >= st.baseline_speed_lo_hz * (1.0 - tolerance) &&
+         speed <= st.baseline_speed_hi_hz * (1.0 + tolerance);
+}
+
+}  // namespace
 
 Status IndicatorScoringStage::Configure(const MachineContext& machine, BlockWorkspace&) {
   two_sided_.assign(machine.indicator_count, 0);
@@ -33,6 +47,9 @@ void IndicatorScoringStage::Learn(StageContext& ctx) noexcept {
   if (!complete) return;
   if (st.indicator_baseline->Add(w.indicators)) {
     st.residual_variance_healthy.Add(w.slot_residual_variance);
+    const bool first = !(st.baseline_speed_hi_hz > 0.0);
+    st.baseline_speed_lo_hz = first ? w.speed_hz : std::min(st.baseline_speed_lo_hz, w.speed_hz);
+    st.baseline_speed_hi_hz = first ? w.speed_hz : std::max(st.baseline_speed_hi_hz, w.speed_hz);
   }
 }
 
@@ -43,7 +60,7 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
   std::fill(w.slot_score.begin(), w.slot_score.end(), 0.0);
   std::fill(w.group_score.begin(), w.group_score.end(), 0.0);
   BlockScore& score = ctx.out.score;
-  if (st.learning || !(w.speed_hz > 0.0)) {
+  if (st.learning || !(w.speed_hz > 0.0) || !WithinBaselineSpeeds(ctx)) {
     std::fill(w.z.begin(), w.z.end(), 0.0);
     std::fill(w.excess.begin(), w.excess.end(), 0.0);
     st.previous_scored = false;
@@ -125,6 +142,7 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
   // a factor 3.7 in a clean healthy run and topped 10 faulty blocks, 9 of them over the limit
   // by a measured channel's indicator as well (docs/diagnosis.md section 10).
   st.previous_scored = true;
+  score.judged = true;
 }
 
 void IndicatorScoringStage::Publish(StageContext& ctx) noexcept {
@@ -160,6 +178,8 @@ void IndicatorScoringStage::Publish(StageContext& ctx) noexcept {
   out.score.clear_level = m.setup.options.clear_level;
   out.score.baseline_blocks_learned = st.indicator_baseline->blocks_seen();
   out.score.baseline_blocks_needed = st.indicator_baseline->blocks_needed();
+  out.score.baseline_speed_lo_hz = st.learning ? 0.0 : st.baseline_speed_lo_hz;
+  out.score.baseline_speed_hi_hz = st.learning ? 0.0 : st.baseline_speed_hi_hz;
 }
 
 RejectReason IndicatorScoringStage::Process(StageContext& ctx) noexcept {

@@ -12,7 +12,8 @@
 // previous one clipped) and divided by the limit that keeps a healthy block's chance of any
 // exceedance at AnalysisOptions::false_alarm_rate. Scores are kept per slot and per rate group
 // for the localisation stage. The envelope indicators (seed) also keep their published mean +
-// k sigma thresholds (core/diagnosis/healthy_baseline.h).
+// k sigma thresholds (core/diagnosis/healthy_baseline.h). A block whose speed lies outside the
+// speeds the baseline learned at (widened by AnalysisOptions::speed_tolerance) is not judged.
 #pragma once
 
 #include <vector>

@@ -37,6 +37,10 @@ struct LearnedState {
   // saved before it existed.
   std::vector<double> mesh_evidence_sum;
   int order_tracking_mode = -1;                   // MachineState::order_tracking_mode
+  // Input speeds the baseline learned at (MachineState::baseline_speed_lo_hz, _hi_hz); both 0
+  // in states saved before they existed, which then judge every speed.
+  double baseline_speed_lo_hz = 0.0;
+  double baseline_speed_hi_hz = 0.0;
 };
 
 // FNV-1a over everything that shapes the indicator vector and its values (header comment).

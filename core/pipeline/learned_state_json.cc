@@ -95,6 +95,7 @@ json ToJson(const LearnedState& s) {
   j["group_excess_sum"] = s.group_excess_sum;
   j["mesh_evidence_sum"] = s.mesh_evidence_sum;
   j["order_tracking_mode"] = s.order_tracking_mode;
+  j["baseline_speed_hz"] = {s.baseline_speed_lo_hz, s.baseline_speed_hi_hz};
   return j;
 }
 
@@ -163,6 +164,16 @@ Result<LearnedState> LearnedStateFromJson(const json& j) {
     if (s.order_tracking_mode < -1 || s.order_tracking_mode > 1) {
       return Error{"learned state: order_tracking_mode: " + std::to_string(s.order_tracking_mode) +
                    " is not -1, 0 or 1"};
+    }
+    // Absent in states written before it: [0, 0], every speed judged.
+    if (j.contains("baseline_speed_hz")) {
+      const auto range = j.at("baseline_speed_hz").get<std::vector<double>>();
+      if (range.size() != 2) {
+        return Error{"learned state: baseline_speed_hz: expected [low, high], got " +
+                     std::to_string(range.size()) + " values"};
+      }
+      s.baseline_speed_lo_hz = range[0];
+      s.baseline_speed_hi_hz = range[1];
     }
     return s;
   } catch (const std::exception& e) {

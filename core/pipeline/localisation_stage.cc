@@ -88,7 +88,8 @@ RejectReason LocalisationStage::Process(StageContext& ctx) noexcept {
   loc = {};
   BlockLocalisation& record = ctx.out.localisation;
   record = {};
-  if (ctx.out.score.limit_z <= 0.0) return RejectReason::kNone;  // not scored (learning)
+  // Not judged (learning, no speed, a speed the baseline did not learn at): evidence held.
+  if (!ctx.out.score.judged) return RejectReason::kNone;
   const std::size_t groups = m.rate_groups.size();
 
   // This block's shaft evidence: per group the EXCLUSIVE residual energy's rise over healthy,

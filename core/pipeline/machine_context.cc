@@ -64,6 +64,10 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
   if (!(o.scale_floor >= 0.0 && o.scale_floor <= 1.0)) {
     return Error{at + fmt::format("options.scale_floor must be in [0, 1], got {}", o.scale_floor)};
   }
+  if (!(o.speed_tolerance >= 0.0 && o.speed_tolerance <= 1.0)) {
+    return Error{at + fmt::format("options.speed_tolerance must be in [0, 1], got {}",
+                                  o.speed_tolerance)};
+  }
   if (!(o.mesh_separation >= 1.0 && o.mesh_separation <= 100.0)) {
     return Error{
         at + fmt::format("options.mesh_separation must be in [1, 100], got {}", o.mesh_separation)};

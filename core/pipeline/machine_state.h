@@ -42,6 +42,10 @@ struct MachineState {
   // that was not scored (learning, no speed).
   std::vector<double> previous_z;
   bool previous_scored = false;
+  // Lowest and highest input speed of the blocks the indicator baseline learned from; both 0
+  // while learning or when a state saved before them was imported (then every speed is judged).
+  double baseline_speed_lo_hz = 0.0;
+  double baseline_speed_hi_hz = 0.0;
   HealthyMean residual_variance_healthy;             // per condition slot: NA4's reference
   std::optional<HealthyBaseline> envelope_baseline;  // published envelope thresholds
   HealthyMean criterion_healthy;                     // per path: dominant-path criterion

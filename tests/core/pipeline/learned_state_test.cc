@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <string_view>
+#include <utility>
 
 #include "core/pipeline/learned_state_json.h"
 #include "tests/core/pipeline/simulated_machine.h"
@@ -158,6 +161,52 @@ TEST(LearnedStateTest, AStateWithoutMeshEvidenceSumsStartsThemFromZero) {
   const Status st = p->ImportLearnedState(short_sums);
   ASSERT_FALSE(st.ok());
   EXPECT_NE(st.error().find("mesh_evidence_sum"), std::string::npos) << st.error();
+}
+
+// The speeds the baseline learned at travel with it. A state saved before they existed reads
+// as [0, 0] and judges every speed, as its machine did; a range that is not 0 < low <= high
+// is refused.
+TEST(LearnedStateTest, TheLearnedSpeedRangeTravelsWithTheBaseline) {
+  const Machine& m = Table1Machine();
+  std::uint64_t seq = 1;
+  BlockProcessor learned = LearnedProcessor(m, seq);
+  const LearnedState saved = ThroughJson(learned.ExportLearnedState());
+  EXPECT_DOUBLE_EQ(saved.baseline_speed_lo_hz, 10.0);
+  EXPECT_DOUBLE_EQ(saved.baseline_speed_hi_hz, 10.0);
+
+  auto resumed = BlockProcessor::Create(MakeSetup(m));
+  ASSERT_TRUE(resumed.ok());
+  ASSERT_TRUE(resumed->ImportLearnedState(saved).ok());
+  GearboxSimulator faster = MakeSimulator(m, FaultType::kNone, "", 11, true, kBlock, 11.0);
+  BlockResult r = RunBlocks(resumed.value(), faster, 1, seq);
+  EXPECT_FALSE(r.score.judged) << r.verdict.reason.view();
+
+  nlohmann::json old = ToJson(learned.ExportLearnedState());
+  old.erase("baseline_speed_hz");
+  auto read = LearnedStateFromJson(old);
+  ASSERT_TRUE(read.ok()) << read.error();
+  EXPECT_EQ(read->baseline_speed_hi_hz, 0.0);
+  auto legacy = BlockProcessor::Create(MakeSetup(m));
+  ASSERT_TRUE(legacy.ok());
+  ASSERT_TRUE(legacy->ImportLearnedState(read.value()).ok());
+  r = RunBlocks(legacy.value(), faster, 1, seq);
+  EXPECT_TRUE(r.score.judged) << r.verdict.reason.view();
+
+  for (const auto& [lo, hi] : {std::pair{11.0, 10.0}, std::pair{0.0, 10.0},
+                               std::pair{10.0, std::numeric_limits<double>::infinity()},
+                               std::pair{std::nan(""), 10.0}}) {
+    LearnedState bad = learned.ExportLearnedState();
+    bad.baseline_speed_lo_hz = lo;
+    bad.baseline_speed_hi_hz = hi;
+    const Status st = legacy->ImportLearnedState(bad);
+    ASSERT_FALSE(st.ok()) << lo << "-" << hi;
+    EXPECT_NE(st.error().find("speed range"), std::string::npos) << st.error();
+  }
+  nlohmann::json three = ToJson(learned.ExportLearnedState());
+  three["baseline_speed_hz"] = {1.0, 2.0, 3.0};
+  auto refused = LearnedStateFromJson(three);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().find("baseline_speed_hz"), std::string::npos) << refused.error();
 }
 
 TEST(LearnedStateTest, InconsistentPartsAreRefusedAndNamed) {

@@ -64,13 +64,15 @@ inline MachineSetup MakeSetup(const Machine& m) {
 
 inline GearboxSimulator MakeSimulator(const Machine& m, FaultType type, const std::string& gear,
                                std::uint64_t seed, bool report_speed = true,
-                               std::uint32_t block_length = kBlock) {
+                               std::uint32_t block_length = kBlock,
+                               double input_speed_hz = 10.0) {
   SimulatorConfig c;
   c.machine_id = "sim";
   c.fault.type = type;
   c.fault.gear = gear;
   c.sample_rate_hz = kFs;
   c.block_length = block_length;
+  c.input_speed_hz = input_speed_hz;
   c.noise_relative = 0.05;
   c.seed = seed;
   c.report_speed = report_speed;
