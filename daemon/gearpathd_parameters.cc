@@ -379,6 +379,14 @@ ParamSpec AnalysisSection() {
                        "scores at most z = 3, about half the limit (indicators that are "
                        "heavy-tailed when healthy, e.g. high moments under broadband bursts).",
                        true),
+               Number("speed_tolerance",
+                      "A block is judged only when its input speed lies within the speeds the "
+                      "baseline was learned at, widened by this fraction either way (the speed "
+                      "reading's jitter); outside, the state is held and the reason says so (the "
+                      "baseline holds the response at the speeds it saw: a healthy machine "
+                      "learned at one constant speed can exceed its limits 0.01 % away). 1 "
+                      "judges every speed.",
+                      0.0, 1.0, 2e-5),
                Number("k_sigma",
                       "Published envelope-indicator thresholds = mean + k_sigma x standard "
                       "deviation.",

@@ -85,6 +85,7 @@ AnalysisOptions TranslateOptions(const json& m) {
   o.false_alarm_rate = Get<double>(base, "false_alarm_rate");
   o.scale_floor = Get<double>(base, "scale_floor");
   o.tail_guard = Get<bool>(base, "tail_guard");
+  o.speed_tolerance = Get<double>(base, "speed_tolerance");
   const json& alarm = a.at("alarm");
   o.alarm_window = Get<int>(alarm, "window");
   o.suspect_k = Get<int>(alarm, "suspect_blocks");
