@@ -59,7 +59,20 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   stream_config.block_length = options.block_length;
   Result<std::unique_ptr<PlantStream>> stream = MakePlantStream(*plant, sc, stream_config);
   if (!stream) return Error{stream.error()};
-  PlantStream& source = **stream;
+  // With a speed step the evaluation blocks come from a second stream at the new speed, which
+  // continues the first one's sequence numbers and clock.
+  std::unique_ptr<PlantStream> stepped;
+  if (options.speed_step != 0.0) {
+    Scenario at_step = sc;
+    at_step.input_rpm = sc.input_rpm * (1.0 + options.speed_step);
+    PlantStreamConfig step_config = stream_config;
+    step_config.first_sequence = static_cast<std::uint64_t>(options.baseline_blocks);
+    step_config.start_time_ns = std::llround(static_cast<double>(options.baseline_blocks) *
+                                             options.block_length / options.sample_rate_hz * 1e9);
+    Result<std::unique_ptr<PlantStream>> s = MakePlantStream(*plant, at_step, step_config);
+    if (!s) return Error{s.error()};
+    stepped = std::move(s).value();
+  }
   Result<TrainLayout> layout = TrainLayoutFromGearTrain(plant->train);
   if (!layout) return Error{"train layout: " + layout.error()};
 
@@ -77,6 +90,7 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   setup.options.order_tracking = options.order_tracking;
   setup.options.localisation_tracking = options.localisation_tracking;
   setup.options.transient_gate = options.transient_gate;
+  if (options.speed_tolerance >= 0.0) setup.options.speed_tolerance = options.speed_tolerance;
   Result<BlockProcessor> processor = BlockProcessor::Create(std::move(setup));
   if (!processor) return Error{"block processor: " + processor.error()};
   if (Status st = processor->Prepare(options.block_length); !st) {
@@ -89,6 +103,7 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   for (int b = 0; b < total; ++b) {
     const bool evaluation = b >= options.baseline_blocks;
     const bool faulty = evaluation && sc.fault != PlantFaultKind::kNone;
+    PlantStream& source = evaluation && stepped ? *stepped : **stream;
     if (faulty && b == options.baseline_blocks && options.target_rms_change > 0.0) {
       // Severity normalised on the first evaluation block, at the stream's position.
       const SeverityFit fit = source.NormaliseSeverity(options.target_rms_change);
@@ -109,7 +124,7 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
     rec.shaft = std::string(result.verdict.shaft_name);
     outcome.verdicts.push_back(std::move(rec));
   }
-  outcome.severity = source.severity();
+  outcome.severity = (stepped ? *stepped : **stream).severity();
   outcome.score = ScoreVerdicts(outcome.verdicts, sc.gear, *layout);
   return outcome;
 }

@@ -62,6 +62,11 @@ struct RunnerOptions {
   bool order_tracking = true;       // AnalysisOptions::order_tracking of every machine
   bool localisation_tracking = true;  // AnalysisOptions::localisation_tracking
   bool transient_gate = true;         // AnalysisOptions::transient_gate
+  // The evaluation blocks run at input_rpm x (1 + speed_step): a machine whose speed moved
+  // after its baseline was learned (the baseline blocks stay at input_rpm). 0: no step.
+  double speed_step = 0.0;
+  // AnalysisOptions::speed_tolerance of every machine; negative keeps the default.
+  double speed_tolerance = -1.0;
   // Give the machine the identity FRF set (core/frf/identity_frf_set.h: every sensor its own
   // path, the configuration before the hammer test) instead of the plant's model FRFs. A seat
   // sensor sits near its bearing's gears, the housing sensor near every gear.

@@ -20,6 +20,8 @@ Result<std::unique_ptr<PlantStream>> MakeLinearStream(const Plant& plant, const 
   sim_config.machine_id = config.machine_id;
   sim_config.sample_rate_hz = config.sample_rate_hz;
   sim_config.block_length = config.block_length;
+  sim_config.first_sequence = config.first_sequence;
+  sim_config.start_time_ns = config.start_time_ns;
   sim_config.input_speed_hz = sc.input_rpm / 60.0;
   sim_config.noise_relative = sc.noise;
   sim_config.tones = sc.unmodelled;
@@ -43,6 +45,8 @@ Result<std::unique_ptr<PlantStream>> MakeParametricStream(const Plant& plant, co
   c.machine_id = config.machine_id;
   c.sample_rate_hz = config.sample_rate_hz;
   c.block_length = config.block_length;
+  c.first_sequence = config.first_sequence;
+  c.start_time_ns = config.start_time_ns;
   c.input_speed_hz = sc.input_rpm / 60.0;
   c.noise_relative = sc.noise;
   c.tones = sc.unmodelled;

@@ -49,6 +49,10 @@ struct PlantStreamConfig {
   std::string machine_id = "plant";
   double sample_rate_hz = 8000.0;
   std::uint32_t block_length = 8192;
+  // The first block's sequence number and start time: a stream that continues another one
+  // (the evaluation's speed step) goes on where it stopped.
+  std::uint64_t first_sequence = 0;
+  std::int64_t start_time_ns = 0;
 };
 
 // The scenario's stream: its plant's truth driven at the scenario's speed, fault, gear, noise

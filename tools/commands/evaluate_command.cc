@@ -4,6 +4,7 @@
 // (parametric_plate) is excluded by default, reported separately when included, and must
 // never be used for tuning.
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -42,6 +43,8 @@ struct EvaluateArgs {
   bool no_transient_gate = false;
   std::string frf = "model";
   std::string dump_blocks_path;
+  double speed_step = 0.0;
+  double speed_tolerance = -1.0;
 };
 
 // One JSON line per processed block: what the verdict stood on (docs/evaluation.md).
@@ -135,8 +138,14 @@ int RunEvaluate(const EvaluateArgs& args) {
   filter.key_contains = args.match;
   std::vector<Scenario> scenarios = EnumerateScenarios(*size, filter);
   if (args.sample > 0) scenarios = SampleScenarios(std::move(scenarios), args.sample);
-  const std::string matrix_label =
+  std::string matrix_label =
       args.sample > 0 ? args.matrix + ", sample " + std::to_string(scenarios.size()) : args.matrix;
+  if (args.speed_step != 0.0) {
+    matrix_label += fmt::format(", evaluation blocks at {:+g} % speed", 100.0 * args.speed_step);
+  }
+  if (args.speed_tolerance >= 0.0) {
+    matrix_label += fmt::format(", speed tolerance {:g}", args.speed_tolerance);
+  }
   if (scenarios.empty()) {
     std::fprintf(stderr, "gearpath evaluate: the selection holds no scenario\n");
     return kExitBadInput;
@@ -160,6 +169,8 @@ int RunEvaluate(const EvaluateArgs& args) {
   runner.localisation_tracking = !args.no_localisation_tracking;
   runner.transient_gate = !args.no_transient_gate;
   runner.identity_frf = args.frf == "identity";
+  runner.speed_step = args.speed_step;
+  runner.speed_tolerance = args.speed_tolerance;
   std::ofstream dump;
   std::mutex dump_mutex;
   if (!args.dump_blocks_path.empty()) {
@@ -264,6 +275,14 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
                 "run the machines with analysis.speed.localisation_tracking off (default on)");
   cmd->add_flag("--no-transient-gate", args->no_transient_gate,
                 "run the machines with analysis.condition.transient_gate off (default on)");
+  cmd->add_option("--speed-step", args->speed_step,
+                  "run the evaluation blocks at the scenario's speed x (1 + STEP), e.g. 0.01: a "
+                  "machine whose speed moved after its baseline was learned")
+      ->check(CLI::Range(-0.5, 0.5));
+  cmd->add_option("--speed-tolerance", args->speed_tolerance,
+                  "run the machines with baseline.speed_tolerance set to this (default: the "
+                  "daemon's; 1 judges every speed)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->callback([args, &exit_code] { exit_code = RunEvaluate(*args); });
 }
 

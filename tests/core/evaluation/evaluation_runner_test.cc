@@ -132,6 +132,39 @@ TEST(EvaluationRunner, RunsAScenarioWithTheIdentityFrfSet) {
   }
 }
 
+// The speed step: the evaluation blocks come from a second stream of the same healthy plant at
+// 1 % more speed, continuing the first one's sequence (no block is refused). Judged at every
+// speed, the healthy machine is reported faulty (the physics: its baseline saw one speed); with
+// the daemon's speed range it is not judged, so it raises nothing and is still learning.
+TEST(EvaluationRunner, AHealthyMachineStepsItsSpeedAfterLearning) {
+  Scenario s;
+  s.family = PlantFamily::kModalHousing;
+  s.variant = TrainVariant::kTable1;
+  s.fault = PlantFaultKind::kNone;
+  s.input_rpm = 450.0;
+  s.noise = 0.10;
+  s.seed = ScenarioSeed(s.Key());
+  RunnerOptions every_speed;
+  every_speed.speed_step = 0.01;
+  every_speed.speed_tolerance = 1.0;
+  const ScenarioOutcome judged = RunScenario(s, every_speed);
+  ASSERT_TRUE(judged.error.empty()) << judged.error;
+  EXPECT_GE(judged.score.false_alarm_blocks, 3);
+
+  RunnerOptions gated;
+  gated.speed_step = 0.01;
+  const ScenarioOutcome held = RunScenario(s, gated);
+  ASSERT_TRUE(held.error.empty()) << held.error;
+  EXPECT_EQ(held.score.false_alarm_blocks, 0);
+  EXPECT_EQ(held.score.learning_blocks, kEvaluationBlocks);
+
+  // No step: the same scenario is judged, and healthy.
+  const ScenarioOutcome steady = RunScenario(s);
+  ASSERT_TRUE(steady.error.empty()) << steady.error;
+  EXPECT_EQ(steady.score.false_alarm_blocks, 0);
+  EXPECT_EQ(steady.score.learning_blocks, 0);
+}
+
 TEST(EvaluationRunner, ReportsAScenarioThatCannotRun) {
   Scenario s = TePulseOnG1();
   s.gear = "G7";
