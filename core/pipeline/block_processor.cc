@@ -564,11 +564,11 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
     return Error{"negative block counts"};
   }
   // Both 0 (saved before the range existed) or 0 < lo <= hi, finite.
-  const bool no_range = s.baseline_speed_lo_hz == 0.0 && s.baseline_speed_hi_hz == 0.0;
-  if (!no_range && !(s.baseline_speed_lo_hz > 0.0 && s.baseline_speed_lo_hz <= s.baseline_speed_hi_hz &&
-                     std::isfinite(s.baseline_speed_hi_hz))) {
-    return Error{fmt::format("baseline speed range {}-{} Hz is not 0 < low <= high",
-                             s.baseline_speed_lo_hz, s.baseline_speed_hi_hz)};
+  const double lo = s.baseline_speed_lo_hz;
+  const double hi = s.baseline_speed_hi_hz;
+  const bool no_range = lo == 0.0 && hi == 0.0;
+  if (!no_range && !(lo > 0.0 && lo <= hi && std::isfinite(hi))) {
+    return Error{fmt::format("baseline speed range {}-{} Hz is not 0 < low <= high", lo, hi)};
   }
   if (s.learning == indicator->learned()) {
     return Error{"learning flag contradicts the indicator baseline"};
