@@ -1,5 +1,7 @@
-// 4-point cubic Lagrange interpolation of a sampled signal at a fractional position: the
-// resampler of the synchronous average and of order tracking. Its gain on a tone is measured in
+// 4-point cubic Lagrange interpolation of a sampled signal at a fractional position: the one
+// definition of the stencil that the synchronous average, the transient gate's periodic read
+// and order tracking resample with (grid_resampler.h fills and applies grids of them, many
+// points at a time, with these terms in this order). Its gain on a tone is measured in
 // synchronous_average.h (under 1 % loss below 0.145 fs).
 #pragma once
 
@@ -30,11 +32,6 @@ inline CubicStencil MakeCubicStencil(std::size_t n, double u) noexcept {
 inline double ApplyCubicStencil(const double* x, const CubicStencil& s) noexcept {
   const double* p = x + s.first;
   return s.w0 * p[0] + s.w1 * p[1] - s.w2 * p[2] + s.w3 * p[3];
-}
-
-// x read at the fractional sample position u, 0 <= u <= n - 1, n >= 4.
-inline double InterpolateCubic(const double* x, std::size_t n, double u) noexcept {
-  return ApplyCubicStencil(x, MakeCubicStencil(n, u));
 }
 
 }  // namespace gearpath

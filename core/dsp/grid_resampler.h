@@ -27,7 +27,7 @@ struct CubicGridView {
   const double* w3 = nullptr;
 };
 
-// The arrays behind a CubicGridView, made once (Resize) and filled point by point each block.
+// The arrays behind a CubicGridView, made once (Resize) and filled by SetCubicStencils.
 struct CubicGrid {
   std::vector<std::uint32_t> first;
   std::vector<double> w0, w1, w2, w3;
@@ -42,13 +42,6 @@ struct CubicGrid {
   // Points every array holds.
   std::size_t size() const noexcept {
     return std::min({first.size(), w0.size(), w1.size(), w2.size(), w3.size()});
-  }
-  void Set(std::size_t p, const CubicStencil& s) noexcept {
-    first[p] = static_cast<std::uint32_t>(s.first);
-    w0[p] = s.w0;
-    w1[p] = s.w1;
-    w2[p] = s.w2;
-    w3[p] = s.w3;
   }
   CubicGridView View() const noexcept {
     return {first.data(), w0.data(), w1.data(), w2.data(), w3.data()};

@@ -9,7 +9,6 @@
 #include <utility>
 
 #include "core/common/simd_clones.h"
-#include "core/dsp/cubic_interpolation.h"
 #include "core/dsp/grid_resampler.h"
 #include "core/dsp/input_checks.h"
 #include "core/dsp/sorting_network.h"

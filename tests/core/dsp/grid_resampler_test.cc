@@ -97,7 +97,8 @@ TEST(GridResampler, SetStencilsHasTheBitsOfMakeCubicStencil) {
       const std::size_t count = positions.size() - begin;
       CubicGrid grid;
       grid.Resize(begin + count + 1);
-      grid.Set(begin + count, CubicStencil{1, 2.0, 3.0, 4.0, 5.0});  // past the count
+      grid.first[begin + count] = 1;  // past the count: must stay as it is
+      grid.w3[begin + count] = 5.0;
       SetCubicStencils(n, positions.data() + begin, count, grid, begin);
       for (std::size_t k = 0; k < count; ++k) {
         const CubicStencil s = MakeCubicStencil(n, std::clamp(positions[begin + k], 0.0, last));
