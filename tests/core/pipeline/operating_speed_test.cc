@@ -14,7 +14,7 @@ namespace {
 using namespace gearpath::testing;
 
 constexpr double kLearnedHz = 10.0;  // LearnedProcessor's blocks
-constexpr double kOtherHz = 11.0;   // 10 % faster
+constexpr double kOtherHz = 11.0;    // 10 % faster
 
 BlockProcessor LearnedWithTolerance(double tolerance, std::uint64_t& seq) {
   MachineSetup setup = MakeSetup(Table1Machine());
