@@ -1,8 +1,10 @@
 #include "core/pipeline/condition_indicator_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -22,11 +24,20 @@ constexpr double kCommonOrderTolerance = 0.1;
 // by well under 1 %).
 constexpr double kTrackingGain = 1.02;
 constexpr int kCoherenceHarmonics = 4;
+// A warp re-phases the revolutions but keeps each one's power, and the power of their mean is at
+// most their mean power: tracking can raise the locked power of the mesh harmonics by at most
+// the revolutions' spread on them (locked + spread is their mean power). A spread under the
+// gain asked for cannot pass the test, so the tracks are skipped and the machine left
+// untracked. A quarter of margin, as the spread is read from Hann-windowed revolutions and
+// the test from their plain average; the bound is tight: on a plant whose drift was swept,
+// the full test starts tracking at a spread of 0.0206 (docs/performance.md).
+constexpr double kCoherentEnough = 0.75 * (kTrackingGain - 1.0);
 // Mesh harmonics tried as the tracking carrier (each one costs a Track()).
 constexpr int kCarrierHarmonics = 3;
 // Floor of the locked evidence, which can come out negative when nothing is locked (the
 // baseline is judged on a log scale).
 constexpr double kLockedEvidenceFloor = 1e-30;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
@@ -144,14 +155,10 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
   // own foreign lines (a pump tone, another shaft's harmonic), so each warp errs its own way;
   // the warp kept is their median, sample by sample (docs/diagnosis.md, section 9a). The one
   // with the smallest phase residual also serves the machine's tracking decision below.
-  std::size_t count = 0;
-  double best_residual = 0.0;
-  double carrier = 0.0;
-  double carrier_shaft = 0.0;
-  std::size_t channel = 0;
+  std::array<Carrier, kMaxTrainMeshes * kCarrierHarmonics> carriers;
+  std::size_t candidates = 0;
   for (const MeshLines& ml : w.meshes) {
-    // A train of more than three meshes: its first meshes' carriers.
-    for (int h = 1; h <= kCarrierHarmonics && count < kMaxCarrierWarps; ++h) {
+    for (int h = 1; h <= kCarrierHarmonics && candidates < carriers.size(); ++h) {
       const double fc = h * ml.mesh_hz;
       if (!(fc - half_band > 0.0) || !(fc + half_band < nyquist)) continue;
       const auto lo = static_cast<std::size_t>(std::ceil((fc - half_band) / w.bin_hz));
@@ -168,17 +175,34 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
         }
       }
       if (!(band_power > 0.0)) continue;
-      const std::optional<OrderTrackResult> track = cw.tracker->TryTrack(
-          std::span<const double>(s.time).subspan(band_channel * w.n, w.n), fc, half_band,
-          std::span<double>(cw.carrier_warps).subspan(count * w.n, w.n));
-      if (!track) continue;
-      ++count;
-      if (count == 1 || track->phase_residual_rad < best_residual) {
-        best_residual = track->phase_residual_rad;
-        carrier = ml.mesh_hz;
-        carrier_shaft = ml.shaft_hz[0];
-        channel = band_channel;
-      }
+      carriers[candidates++] = {fc, ml.mesh_hz, ml.shaft_hz[0], band_channel};
+    }
+  }
+  const std::span<const Carrier> tried(carriers.data(), candidates);
+  // The decision's shortcut: when every carrier's shaft average already holds its mesh
+  // harmonics coherently, no warp can make it gain what the decision asks for.
+  if (mode == -1 && LargestIncoherence(ctx, tried) < kCoherentEnough) {
+    mode = 0;
+    return false;
+  }
+  std::size_t count = 0;
+  double best_residual = 0.0;
+  double carrier = 0.0;
+  double carrier_shaft = 0.0;
+  std::size_t channel = 0;
+  for (const Carrier& c : tried) {
+    // A train of more than three meshes: the first carriers that track.
+    if (count == kMaxCarrierWarps) break;
+    const std::optional<OrderTrackResult> track = cw.tracker->TryTrack(
+        std::span<const double>(s.time).subspan(c.channel * w.n, w.n), c.hz, half_band,
+        std::span<double>(cw.carrier_warps).subspan(count * w.n, w.n));
+    if (!track) continue;
+    ++count;
+    if (count == 1 || track->phase_residual_rad < best_residual) {
+      best_residual = track->phase_residual_rad;
+      carrier = c.mesh_hz;
+      carrier_shaft = c.shaft_hz;
+      channel = c.channel;
     }
   }
   const bool tracked = count > 0;
@@ -197,6 +221,49 @@ bool ConditionIndicatorStage::TrackOrders(StageContext& ctx) noexcept {
                : 0;
   }
   return mode == 1 && tracked;
+}
+
+double ConditionIndicatorStage::LargestIncoherence(StageContext& ctx,
+                                                   std::span<const Carrier> carriers) noexcept {
+  const BlockWorkspace& w = ctx.work;
+  ShapeScratch::Condition& cw = ctx.scratch.condition;
+  double largest = 0.0;
+  for (std::size_t i = 0; i < carriers.size(); ++i) {
+    const Carrier& c = carriers[i];
+    // A mesh's harmonics share one shaft and, mostly, one channel: each pair is read once.
+    const auto same = [&c](const Carrier& o) {
+      return o.mesh_hz == c.mesh_hz && o.shaft_hz == c.shaft_hz && o.channel == c.channel;
+    };
+    if (std::any_of(carriers.begin(), carriers.begin() + static_cast<std::ptrdiff_t>(i), same)) {
+      continue;
+    }
+    // A mesh's carriers come one after another: their shaft's grid is planned once. One
+    // revolution has no spread to read: the tracks decide.
+    if (cw.plans.empty()) return kInfinity;
+    const SynchronousAveragePlan& plan = cw.plans[0];
+    if (plan.shaft_hz != c.shaft_hz || i == 0) {
+      if (!cw.tsa->Plan(c.shaft_hz, cw.plans[0], {}).ok()) return kInfinity;
+    }
+    if (plan.revolutions < 2) return kInfinity;
+    const std::size_t orders = plan.points_per_revolution / 2 + 1;
+    const std::span<double> locked(cw.locked_power.data(), orders);
+    const std::span<double> spread(cw.spread_power.data(), orders);
+    const std::span<const double> signal =
+        std::span<const double>(ctx.scratch.time).subspan(c.channel * w.n, w.n);
+    if (!cw.tsa->RevolutionSpread(signal, plan, locked, spread).ok()) return kInfinity;
+    const double teeth = std::round(c.mesh_hz / c.shaft_hz);
+    double locked_sum = 0.0;
+    double spread_sum = 0.0;
+    for (int h = 1; h <= kCoherenceHarmonics; ++h) {
+      const double k = h * teeth;
+      if (!(k < static_cast<double>(orders))) break;
+      locked_sum += locked[static_cast<std::size_t>(k)];
+      spread_sum += spread[static_cast<std::size_t>(k)];
+    }
+    if (!(locked_sum > 0.0)) return kInfinity;
+    largest = std::max(largest, spread_sum / locked_sum);
+  }
+  return largest;
 }
 
 double ConditionIndicatorStage::MeshCoherence(ShapeScratch::Condition& cw,

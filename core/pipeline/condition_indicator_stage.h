@@ -41,6 +41,18 @@ class ConditionIndicatorStage final : public PipelineStage {
   // The machine's first block with a speed decides, once, whether it is tracked at all
   // (MachineState::order_tracking_mode): a baseline must be averaged like the blocks it judges.
   bool TrackOrders(StageContext& ctx) noexcept;
+  // A mesh harmonic tried as the tracking carrier: its frequency, its mesh's and shaft's, and
+  // the channel where its band is strongest.
+  struct Carrier {
+    double hz = 0.0;
+    double mesh_hz = 0.0;
+    double shaft_hz = 0.0;
+    std::size_t channel = 0;
+  };
+  // Over `carriers`: the largest ratio of the revolutions' spread to their locked power on the
+  // first mesh harmonics of the carrier's shaft average at constant speed (infinity when one
+  // cannot be taken).
+  double LargestIncoherence(StageContext& ctx, std::span<const Carrier> carriers) noexcept;
   // Power of the first mesh harmonics in `signal`'s average at `shaft_hz` (averaged into
   // cw.record on cw.plans[0]).
   double MeshCoherence(ShapeScratch::Condition& cw, std::span<const double> signal,

@@ -143,7 +143,9 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
     t.gear_names.push_back(g.name);
     t.gear_shaft.push_back(g.shaft);
   }
-  if (train.meshes.size() > 32) return Error{at + "train has more than 32 meshes"};
+  if (train.meshes.size() > kMaxTrainMeshes) {
+    return Error{at + "train has more than " + std::to_string(kMaxTrainMeshes) + " meshes"};
+  }
   for (std::size_t m = 0; m < train.meshes.size(); ++m) {
     const TrainGear& a = train.gears[static_cast<std::size_t>(train.meshes[m].gear_a)];
     const TrainGear& b = train.gears[static_cast<std::size_t>(train.meshes[m].gear_b)];

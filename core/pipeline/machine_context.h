@@ -62,6 +62,9 @@ struct SignatureSlot {
   std::size_t tracked_offset = 0;
 };
 
+// Meshes a train may have (MachineContext::Create refuses more).
+inline constexpr std::size_t kMaxTrainMeshes = 32;
+
 // Sidebands and mesh harmonics the transfer signature looks at.
 inline constexpr int kSignatureSidebands = 3;   // k = 1..3 around each harmonic
 inline constexpr int kSignatureHarmonics = 3;   // h = 1..3

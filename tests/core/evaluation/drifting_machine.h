@@ -21,10 +21,12 @@ struct DriftingMachine {
   BlockProcessor processor;
 };
 
-// options: the analysis options to run with (sample_rate_hz is set to the simulator's).
+// options: the analysis options to run with (sample_rate_hz is set to the simulator's);
+// drift_relative: the drift's amplitude when `drift`.
 inline DriftingMachine MakeDriftingMachine(bool drift, AnalysisOptions options,
                                            PlantFaultKind fault = PlantFaultKind::kNone,
-                                           const std::string& gear = "") {
+                                           const std::string& gear = "",
+                                           double drift_relative = 0.003) {
   Result<Plant> plant = MakePlant({PlantFamily::kLumpedPerturbed, TrainVariant::kTable1,
                                    ChannelSet::kSeats, 11});
   EXPECT_TRUE(plant.ok()) << plant.error();
@@ -39,6 +41,7 @@ inline DriftingMachine MakeDriftingMachine(bool drift, AnalysisOptions options,
   sc.input_speed_hz = 10.0;
   sc.noise_relative = 0.02;
   sc.speed_drift = drift;
+  sc.drift_relative = drift_relative;
   sc.seed = 11;
   Result<PlantSimulator> sim =
       PlantSimulator::Create(plant->dynamics, plant->channels, std::move(excitation).value(), sc);

@@ -1,7 +1,8 @@
 // The per-machine order-tracking decision (condition_indicator_stage.h) on a plant of the
 // evaluation families: a machine whose speed drifts within each block is tracked, one at
 // constant speed is not, the decision is kept in the learned state, and a machine with order
-// tracking off never decides; localisation tracking alone decides the same way.
+// tracking off never decides; localisation tracking alone decides the same way; the shortcut
+// that skips the tracks decides as the full test at the edge of what tracking gains.
 #include <gtest/gtest.h>
 
 #include <utility>
@@ -52,6 +53,25 @@ TEST(OrderTrackingDecision, AConstantSpeedMachineIsNotTracked) {
 TEST(OrderTrackingDecision, TrackingOffNeverDecides) {
   Machine m = MakeMachine(/*drift=*/true, /*order_tracking=*/false);
   EXPECT_EQ(ModeAfterBlocks(m, 2), -1);
+}
+
+// The decision's shortcut (condition_indicator_stage.cc, kCoherentEnough) leaves a machine
+// untracked, without tracking, when its revolutions already agree on the mesh harmonics; it
+// must not leave one untracked that the full test would track. The truth, taken with the
+// shortcut switched off in a scratch build: on this plant the full test tracks from a drift of
+// 2.5e-4 (the revolutions' spread there is 0.0206 of their locked power, just over the gain of
+// 2 % the test asks for, where the shortcut's bound says it can first pass) and not at 2e-4
+// (spread 0.0133, where the shortcut decides).
+TEST(OrderTrackingDecision, TheShortcutLeavesUntrackedOnlyWhatTheTestWould) {
+  const struct {
+    double drift;
+    int mode;
+  } cases[] = {{0.0, 0}, {2e-4, 0}, {2.5e-4, 1}, {3e-4, 1}};
+  for (const auto& c : cases) {
+    Machine m = testing::MakeDriftingMachine(/*drift=*/c.drift > 0.0, AnalysisOptions{},
+                                             PlantFaultKind::kNone, "", c.drift);
+    EXPECT_EQ(ModeAfterBlocks(m, 1), c.mode) << "drift " << c.drift;
+  }
 }
 
 // Localisation tracking alone (the default) takes the same per-machine decision.
