@@ -182,10 +182,11 @@ BENCHMARK(BM_ReferenceIdentify)->ArgName("figures")->Arg(0)->Arg(1)->Unit(benchm
 // imports what a machine past its baseline learned (as the daemon's reload and a start with a
 // state directory do), so it is a scored block like BM_ReferenceBlock's. Counters: the minor
 // page faults of the timed block (getrusage) and each stage's wall time in it, in ms (as
-// BM_ReferenceStages).
+// BM_ReferenceStages). drift:1 streams the reference machine with its speed drifting within
+// each block, so that the decision tracks it (counter `tracked`).
 void BM_ReferenceFirstBlock(benchmark::State& state) {
   const MachineSetup setup = ReferenceSetup(12, 0);
-  AccelBlock block = ReferenceBlock(setup.frf_set, 16000, false);
+  AccelBlock block = ReferenceBlock(setup.frf_set, 16000, state.range(1) != 0);
   const int variant = static_cast<int>(state.range(0));
   LearnedState learned;
   std::uint64_t seq = 0;
@@ -203,6 +204,7 @@ void BM_ReferenceFirstBlock(benchmark::State& state) {
     learned = warm->ExportLearnedState();
   }
   double faults = 0.0;
+  int tracked = -1;
   std::vector<double> stage_ms;
   std::vector<std::string> stage_names;
   for (auto _ : state) {
@@ -236,20 +238,24 @@ void BM_ReferenceFirstBlock(benchmark::State& state) {
       stage_names[i] = std::string(times[i].stage);
       stage_ms[i] += 1e3 * times[i].total_s;
     }
+    tracked = processor->ExportLearnedState().order_tracking_mode;
     processor = Error{"released untimed"};
     state.ResumeTiming();
   }
   const auto iterations = static_cast<double>(state.iterations());
   state.counters["page_faults"] = faults / iterations;
+  state.counters["tracked"] = tracked;
   for (std::size_t i = 0; i < stage_ms.size(); ++i) {
     if (stage_ms[i] > 0.0) state.counters[stage_names[i] + "_ms"] = stage_ms[i] / iterations;
   }
 }
 BENCHMARK(BM_ReferenceFirstBlock)
-    ->ArgName("block")
-    ->Arg(0)
-    ->Arg(1)
-    ->Arg(2)
+    ->ArgNames({"block", "drift"})
+    ->Args({0, 0})
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({0, 1})
+    ->Args({1, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 
