@@ -61,11 +61,13 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   if (!stream) return Error{stream.error()};
   // With a speed step the evaluation blocks come from a second stream at the new speed, which
   // continues the first one's sequence numbers and clock.
+  // A load step likewise.
   std::unique_ptr<PlantStream> stepped;
-  if (options.speed_step != 0.0) {
+  if (options.speed_step != 0.0 || options.load_step != 0.0) {
     Scenario at_step = sc;
     at_step.input_rpm = sc.input_rpm * (1.0 + options.speed_step);
     PlantStreamConfig step_config = stream_config;
+    step_config.load_factor = 1.0 + options.load_step;
     step_config.first_sequence = static_cast<std::uint64_t>(options.baseline_blocks);
     step_config.start_time_ns = std::llround(static_cast<double>(options.baseline_blocks) *
                                              options.block_length / options.sample_rate_hz * 1e9);

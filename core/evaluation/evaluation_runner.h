@@ -65,6 +65,9 @@ struct RunnerOptions {
   // The evaluation blocks run at input_rpm x (1 + speed_step): a machine whose speed moved
   // after its baseline was learned (the baseline blocks stay at input_rpm). 0: no step.
   double speed_step = 0.0;
+  // The evaluation blocks run at the scenario's load x (1 + load_step) (PlantStreamConfig::
+  // load_factor): a machine whose load moved after its baseline was learned. 0: no step.
+  double load_step = 0.0;
   // AnalysisOptions::speed_tolerance of every machine; negative keeps the default.
   double speed_tolerance = -1.0;
   // Give the machine the identity FRF set (core/frf/identity_frf_set.h: every sensor its own

@@ -1,6 +1,11 @@
 #include "core/evaluation/plant_stream.h"
 
+#include <cmath>
+#include <memory>
+#include <utility>
+
 #include "core/evaluation/linear_plant_stream.h"
+#include "core/evaluation/parametric_gearbox.h"
 #include "core/evaluation/parametric_plant_simulator.h"
 #include "core/evaluation/parametric_plate_plant.h"
 #include "core/evaluation/plant_simulator.h"
@@ -10,10 +15,14 @@ namespace {
 
 Result<std::unique_ptr<PlantStream>> MakeLinearStream(const Plant& plant, const Scenario& sc,
                                                       const PlantStreamConfig& config) {
+  if (!(config.load_factor > 0.0) || !std::isfinite(config.load_factor)) {
+    return Error{"plant stream: load_factor must be finite and > 0"};
+  }
   PlantExcitationConfig ex;
   ex.fault = sc.fault;
   ex.faulty_gear = sc.gear;
   ex.seed = sc.seed;
+  ex.mesh_fundamental_m *= config.load_factor;
   Result<PlantExcitation> excitation = PlantExcitation::Create(plant.train, ex);
   if (!excitation) return Error{excitation.error()};
   PlantSimulatorConfig sim_config;
@@ -38,6 +47,18 @@ Result<std::unique_ptr<PlantStream>> MakeLinearStream(const Plant& plant, const 
 Result<std::unique_ptr<PlantStream>> MakeParametricStream(const Plant& plant, const Scenario& sc,
                                                           const PlantStreamConfig& config) {
   if (!plant.parametric) return Error{"parametric stream: the plant has no parametric truth"};
+  if (!(config.load_factor > 0.0) || !std::isfinite(config.load_factor)) {
+    return Error{"parametric stream: load_factor must be finite and > 0"};
+  }
+  std::shared_ptr<const ParametricGearbox> truth = plant.parametric->truth;
+  if (config.load_factor != 1.0) {
+    ParametricGearboxParameters p = truth->parameters();
+    p.load_torque_nm *= config.load_factor;
+    p.load_damping_nms_per_rad *= config.load_factor;
+    Result<ParametricGearbox> loaded = ParametricGearbox::Create(std::move(p));
+    if (!loaded) return Error{"parametric stream: load step: " + loaded.error()};
+    truth = std::make_shared<const ParametricGearbox>(std::move(loaded).value());
+  }
   Result<ToothFault> fault =
       DrawToothFault(*plant.parametric, plant.train, sc.fault, sc.gear, sc.seed);
   if (!fault) return Error{fault.error()};
@@ -54,7 +75,7 @@ Result<std::unique_ptr<PlantStream>> MakeParametricStream(const Plant& plant, co
   c.speed_drift = sc.unmodelled;
   c.seed = sc.seed;
   Result<ParametricPlantSimulator> sim =
-      ParametricPlantSimulator::Create(plant.parametric->truth, plant.parametric->channel_points,
+      ParametricPlantSimulator::Create(std::move(truth), plant.parametric->channel_points,
                                        plant.channels, std::move(fault).value(), c);
   if (!sim) return Error{sim.error()};
   return std::unique_ptr<PlantStream>(

@@ -53,6 +53,11 @@ struct PlantStreamConfig {
   // (the evaluation's speed step) goes on where it stopped.
   std::uint64_t first_sequence = 0;
   std::int64_t start_time_ns = 0;
+  // The transmitted load x this (> 0; the evaluation's load step). The parametric plant's load
+  // torque and viscous load are scaled, and through them every mesh's deflection; the linear
+  // plants, driven by their meshes' transmission errors, get their healthy errors scaled (the
+  // elastic part of a loaded mesh's error grows with its load; the fault's stays as drawn).
+  double load_factor = 1.0;
 };
 
 // The scenario's stream: its plant's truth driven at the scenario's speed, fault, gear, noise

@@ -44,6 +44,7 @@ struct EvaluateArgs {
   std::string frf = "model";
   std::string dump_blocks_path;
   double speed_step = 0.0;
+  double load_step = 0.0;
   double speed_tolerance = -1.0;
 };
 
@@ -143,6 +144,9 @@ int RunEvaluate(const EvaluateArgs& args) {
   if (args.speed_step != 0.0) {
     matrix_label += fmt::format(", evaluation blocks at {:+g} % speed", 100.0 * args.speed_step);
   }
+  if (args.load_step != 0.0) {
+    matrix_label += fmt::format(", evaluation blocks at {:+g} % load", 100.0 * args.load_step);
+  }
   if (args.speed_tolerance >= 0.0) {
     matrix_label += fmt::format(", speed tolerance {:g}", args.speed_tolerance);
   }
@@ -170,6 +174,7 @@ int RunEvaluate(const EvaluateArgs& args) {
   runner.transient_gate = !args.no_transient_gate;
   runner.identity_frf = args.frf == "identity";
   runner.speed_step = args.speed_step;
+  runner.load_step = args.load_step;
   runner.speed_tolerance = args.speed_tolerance;
   std::ofstream dump;
   std::mutex dump_mutex;
@@ -279,6 +284,10 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
                   "run the evaluation blocks at the scenario's speed x (1 + STEP), e.g. 0.01: a "
                   "machine whose speed moved after its baseline was learned")
       ->check(CLI::Range(-0.5, 0.5));
+  cmd->add_option("--load-step", args->load_step,
+                  "run the evaluation blocks at the plant's load x (1 + STEP), e.g. 0.2: a "
+                  "machine whose load moved after its baseline was learned")
+      ->check(CLI::Range(-0.9, 2.0));
   cmd->add_option("--speed-tolerance", args->speed_tolerance,
                   "run the machines with baseline.speed_tolerance set to this (default: the "
                   "daemon's; 1 judges every speed)")
