@@ -371,8 +371,10 @@ ParamSpec AnalysisSection() {
                       "far below it).",
                       0.0, 0.5, 0.01, true),
                Number("scale_floor",
-                      "Relative floor of every indicator's healthy spread (0.05: a change under "
-                      "5 % of its level never counts as large).",
+                      "Relative floor of every indicator's healthy spread, as a change of the "
+                      "signal's amplitude (0.05: an amplitude, or an energy or NA4 that goes with "
+                      "its square or fourth power, never counts a change of the signal's level "
+                      "under 5 % as large).",
                       0.0, 1.0, 0.05),
                Boolean("tail_guard",
                        "Widen each indicator's healthy spread so that the worst baseline block "

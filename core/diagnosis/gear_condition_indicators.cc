@@ -139,6 +139,18 @@ Status Reject(const std::string& message) { return Error{std::string(kStage) + "
 
 }  // namespace
 
+int AmplitudePower(ConditionIndicator indicator) noexcept {
+  switch (indicator) {
+    case ConditionIndicator::kNa4:
+      return 4;
+    case ConditionIndicator::kMeshHarmonics:
+    case ConditionIndicator::kTsaRms:
+      return 1;
+    default:
+      return 0;
+  }
+}
+
 std::string_view ConditionIndicatorName(ConditionIndicator indicator) noexcept {
   switch (indicator) {
     case ConditionIndicator::kFm0:

@@ -61,6 +61,11 @@ inline constexpr std::size_t kMaxMeshesPerShaft = 4;
 
 // snake_case name ("fm4", "energy_ratio", ...); "unknown" out of range.
 std::string_view ConditionIndicatorName(ConditionIndicator indicator) noexcept;
+// The power of the signal's amplitude an indicator goes with when the whole signal is scaled
+// (a load that rises, a sensor's gain): 0 for the ratios and normalised moments, 1 for the
+// amplitudes (mesh harmonics, TSA RMS), 4 for NA4 (a fourth moment over a reference variance
+// learned once, squared).
+int AmplitudePower(ConditionIndicator indicator) noexcept;
 // One line: what it measures.
 std::string_view ConditionIndicatorDescription(ConditionIndicator indicator) noexcept;
 // "1" for dimensionless, "signal" for the signal's own unit (e.g. m/s^2).

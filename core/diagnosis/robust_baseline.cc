@@ -185,6 +185,17 @@ Result<RobustBaseline> RobustBaseline::Create(std::size_t indicators,
                  std::to_string(indicators) + "), got " +
                  std::to_string(options.log_transform.size())};
   }
+  if (!options.floor_power.empty() && options.floor_power.size() != indicators) {
+    return Error{"robust baseline: floor_power must be empty or have one power per indicator (" +
+                 std::to_string(indicators) + "), got " +
+                 std::to_string(options.floor_power.size())};
+  }
+  for (double power : options.floor_power) {
+    if (!(power >= 1.0) || !std::isfinite(power)) {
+      return Error{"robust baseline: floor_power values must be finite and >= 1, got " +
+                   std::to_string(power)};
+    }
+  }
   if (!(options.tail_z >= 0.0) || !std::isfinite(options.tail_z)) {
     return Error{"robust baseline: tail_z must be finite and >= 0 (0 = off), got " +
                  std::to_string(options.tail_z)};
@@ -194,6 +205,7 @@ Result<RobustBaseline> RobustBaseline::Create(std::size_t indicators,
   b.blocks_ = options.blocks;
   b.tail_z_ = options.tail_z;
   b.relative_floor_ = options.relative_floor;
+  b.floor_power_ = options.floor_power;
   b.absolute_floor_ = options.absolute_floor;
   b.log_value_floor_ = options.log_value_floor;
   b.log_.assign(indicators, 0);
@@ -337,7 +349,8 @@ void RobustBaseline::Finalise() noexcept {
     }
     const double sigma = pairs_.empty() ? kMadToSigma * MedianInPlace(scratch_) : qn;
     const double tail = tail_z_ > 0.0 ? largest / tail_z_ : 0.0;
-    const double relative = log_[i] != 0 ? std::log1p(relative_floor_)  // x (1 + r) on log scale
+    const double power = floor_power_.empty() ? 1.0 : floor_power_[i];
+    const double relative = log_[i] != 0 ? power * std::log1p(relative_floor_)  // x (1 + r)^power
                                          : relative_floor_ * std::fabs(median);
     median_[i] = median;
     scale_[i] = std::max({sigma, relative, absolute_floor_, tail});

@@ -88,6 +88,10 @@ struct RobustBaselineOptions {
   double log_value_floor = 1e-300;  // log indicators take log(max(x, this)) (> 0)
   // Per indicator: judge on log(x). Empty = no indicator on a log scale; else size K.
   std::vector<bool> log_transform;
+  // Per indicator on a log scale: the power of the signal's amplitude it goes with (an energy
+  // 2), so that its relative floor is the amplitude's: log(1 + relative_floor) x the power.
+  // Empty = 1 for every indicator; else size K, each finite and >= 1.
+  std::vector<double> floor_power;
   // Tail guard (0 = off): the scale is also at least max_b |y_b - m| / tail_z over the N
   // baseline blocks, so no healthy baseline block would have scored above tail_z. The MAD
   // ignores a minority of outlying blocks, which is right for the location and wrong for the
@@ -162,6 +166,11 @@ class RobustBaseline {
   // (it applies when learning completes; 0 = off).
   void set_tail_z(double tail_z) noexcept { tail_z_ = tail_z > 0.0 ? tail_z : 0.0; }
   double tail_z() const noexcept { return tail_z_; }
+  // Likewise RobustBaselineOptions::floor_power (ignored unless empty or of size K; allocates).
+  void set_floor_power(std::span<const double> power) {
+    if (power.empty() || power.size() == indicators_) floor_power_.assign(power.begin(), power.end());
+  }
+  std::span<const double> floor_power() const noexcept { return floor_power_; }
 
  private:
   RobustBaseline() = default;
@@ -173,6 +182,7 @@ class RobustBaseline {
   int count_ = 0;
   int skipped_ = 0;
   double relative_floor_ = 0.0;
+  std::vector<double> floor_power_;  // empty: 1 each
   double absolute_floor_ = 0.0;
   double log_value_floor_ = 0.0;
   double tail_z_ = 0.0;

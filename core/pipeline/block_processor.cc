@@ -87,6 +87,19 @@ Status InitialiseState(const MachineContext& m, MachineState& st) {
   bo.blocks = o.baseline_blocks;
   bo.relative_floor = o.scale_floor;
   bo.log_transform.assign(m.indicator_count, true);  // every indicator is a positive ratio
+  // The relative floor is the amplitude's: an energy's is twice as wide on the log scale, NA4's
+  // four times, so that a level change (a load, a gain) moves none past the floor sooner.
+  bo.floor_power.assign(m.indicator_count, 1.0);
+  for (const ConditionSlot& cs : m.condition_slots) {
+    const std::vector<int>& powers = m.rate_groups[cs.group].indicator_powers;
+    for (std::size_t k = 0; k < powers.size() && k < cs.count; ++k) {
+      bo.floor_power[cs.offset + k] = std::max(1.0, static_cast<double>(powers[k]));
+    }
+  }
+  for (const SignatureSlot& ss : m.signature_slots) {  // parallel and orthogonal energies
+    bo.floor_power[ss.offset] = 2.0;
+    bo.floor_power[ss.offset + 1] = 2.0;
+  }
   st.limit_z = RobustBaseline::ZForFalseAlarmRate(
       o.false_alarm_rate, static_cast<int>(m.scored_indicator_count), o.baseline_blocks);
   if (!(st.limit_z > 0.0)) {
@@ -537,6 +550,7 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
   if (!indicator) return Error{indicator.error()};
   // Configuration, not state (the fingerprint vouches that it is the one it learned under).
   indicator->set_tail_z(now.indicator_baseline->tail_z());
+  indicator->set_floor_power(now.indicator_baseline->floor_power());
   std::optional<HealthyBaseline> envelope;
   if (s.envelope_baseline) {
     auto e = HealthyBaseline::FromState(*s.envelope_baseline);

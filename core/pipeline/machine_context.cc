@@ -217,7 +217,7 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
       if (std::abs(impl->rate_groups[g].ratio - r) <= tol * r) found = static_cast<int>(g);
     }
     if (found < 0) {
-      impl->rate_groups.push_back(RateGroup{r, {}, {}, {}, {}, {}, {}, {}});
+      impl->rate_groups.push_back(RateGroup{r, {}, {}, {}, {}, {}, {}, {}, {}});
       found = static_cast<int>(impl->rate_groups.size()) - 1;
     }
     impl->rate_groups[static_cast<std::size_t>(found)].shafts.push_back(static_cast<int>(s));
@@ -247,12 +247,16 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
       rg.mesh_orders.push_back(rg.gear_teeth[i]);
     }
     for (std::size_t k = 0; k < kConditionIndicatorCount; ++k) {
-      rg.indicator_names.emplace_back(ConditionIndicatorName(static_cast<ConditionIndicator>(k)));
+      const auto indicator = static_cast<ConditionIndicator>(k);
+      rg.indicator_names.emplace_back(ConditionIndicatorName(indicator));
+      rg.indicator_powers.push_back(AmplitudePower(indicator));
     }
     for (int mesh : rg.meshes) {
       rg.indicator_names.push_back("sideband_" + t.mesh_names[static_cast<std::size_t>(mesh)]);
+      rg.indicator_powers.push_back(2);  // an energy
     }
     rg.indicator_names.emplace_back("exclusive_residual");
+    rg.indicator_powers.push_back(2);
   }
 
   // Condition-indicator signals and the indicator vector's layout.

@@ -29,6 +29,8 @@ struct RateGroup {
   // Names of one condition-indicator set at this rate: the core indicators, the per-mesh
   // sideband energies ("sideband_<mesh name>"), the exclusive residual.
   std::vector<std::string> indicator_names;
+  // Each one's power of the signal's amplitude (AmplitudePower; the energies 2).
+  std::vector<int> indicator_powers;
 };
 
 // One signal whose condition indicators are computed at every rate group.

@@ -200,6 +200,34 @@ TEST(RobustBaselineTest, LogIndicatorRelativeFloorIsTheLogOfOnePlusTheFloor) {
   EXPECT_LT(z[0], -1000.0);
 }
 
+// An energy (power 2) and NA4 (power 4) of a signal whose amplitude rises by 10 %: on the
+// floor, each scores what the amplitude itself scores (log 1.1 / log 1.05 = 1.95), where a
+// floor of log 1.05 for all would score the energy 3.9 and NA4 7.8.
+TEST(RobustBaselineTest, FloorPowerGivesEveryIndicatorTheAmplitudesFloor) {
+  RobustBaselineOptions o;
+  o.blocks = 3;
+  o.log_transform = {true, true, true};
+  o.floor_power = {1.0, 2.0, 4.0};
+  auto b = RobustBaseline::Create(3, o);
+  ASSERT_TRUE(b.ok()) << b.error();
+  for (int i = 0; i < 3; ++i) b->Add(std::vector<double>{2.0, 4.0, 16.0});  // a, a^2, a^4
+  EXPECT_NEAR(b->scale()[0], std::log(1.05), 1e-15);
+  EXPECT_NEAR(b->scale()[1], 2.0 * std::log(1.05), 1e-15);
+  EXPECT_NEAR(b->scale()[2], 4.0 * std::log(1.05), 1e-15);
+  const double a = 2.0 * 1.1;
+  std::vector<double> z(3);
+  b->ZScores(std::vector<double>{a, a * a, a * a * a * a}, z);
+  const double amplitude_z = std::log(1.1) / std::log(1.05);
+  for (double zi : z) EXPECT_NEAR(zi, amplitude_z, 1e-12);
+  // Configuration, not state: a baseline resumed from its state takes it again.
+  auto resumed = RobustBaseline::FromState(b->State());
+  ASSERT_TRUE(resumed.ok()) << resumed.error();
+  EXPECT_TRUE(resumed->floor_power().empty());
+  resumed->set_floor_power(b->floor_power());
+  ASSERT_EQ(resumed->floor_power().size(), 3u);
+  EXPECT_EQ(resumed->floor_power()[2], 4.0);
+}
+
 TEST(RobustBaselineTest, OneOutlierBlockDoesNotMoveTheThresholdButMovesMeanPlusSigma) {
   std::mt19937_64 rng(11);
   std::normal_distribution<double> g(10.0, 1.0);
@@ -521,6 +549,14 @@ TEST(RobustBaselineTest, InvalidCreateArgumentsAreNamed) {
   EXPECT_EQ(error_of(3, o),
             "robust baseline: log_transform must be empty or have one flag per indicator (3), "
             "got 2");
+  o = {};
+  o.floor_power = {1.0, 2.0};
+  EXPECT_EQ(error_of(3, o),
+            "robust baseline: floor_power must be empty or have one power per indicator (3), "
+            "got 2");
+  o.floor_power = {1.0, 0.5, 2.0};
+  EXPECT_EQ(error_of(3, o),
+            "robust baseline: floor_power values must be finite and >= 1, got 0.500000");
 }
 
 }  // namespace

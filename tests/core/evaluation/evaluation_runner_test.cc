@@ -165,6 +165,34 @@ TEST(EvaluationRunner, AHealthyMachineStepsItsSpeedAfterLearning) {
   EXPECT_EQ(steady.score.learning_blocks, 0);
 }
 
+// The load step: the evaluation blocks come from a second stream of the same healthy plant at
+// another load (its healthy transmission errors scaled: every line of the response grows with
+// it). A level change of 10 % stays inside the baseline's relative floor, which is the
+// amplitude's for every indicator (an energy's twice as wide on the log scale, NA4's four
+// times); one of 50 % is flagged, as the physics says it must be by a baseline learned at one
+// load.
+TEST(EvaluationRunner, AHealthyMachineWhoseLoadRisesATenthIsNotFlagged) {
+  Scenario s;
+  s.family = PlantFamily::kModalHousing;
+  s.variant = TrainVariant::kTable1;
+  s.fault = PlantFaultKind::kNone;
+  s.input_rpm = 450.0;
+  s.noise = 0.10;
+  s.seed = ScenarioSeed(s.Key());
+  RunnerOptions tenth;
+  tenth.load_step = 0.1;
+  const ScenarioOutcome small = RunScenario(s, tenth);
+  ASSERT_TRUE(small.error.empty()) << small.error;
+  EXPECT_EQ(small.score.false_alarm_blocks, 0);
+  EXPECT_EQ(small.score.learning_blocks, 0);
+
+  RunnerOptions half;
+  half.load_step = 0.5;
+  const ScenarioOutcome large = RunScenario(s, half);
+  ASSERT_TRUE(large.error.empty()) << large.error;
+  EXPECT_GE(large.score.false_alarm_blocks, 3);
+}
+
 TEST(EvaluationRunner, ReportsAScenarioThatCannotRun) {
   Scenario s = TePulseOnG1();
   s.gear = "G7";
