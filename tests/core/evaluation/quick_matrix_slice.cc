@@ -41,9 +41,10 @@ namespace {
 // 74/96; the transient gate (2026-11-28, fifteenth session: fewer false alarms and more
 // detections on the 400-scenario tuning draw) detection 86/96, right gear 72/96, 0/120 on this
 // slice; the mesh evidence harmonic by harmonic in z (2026-11-28, sixteenth session) right gear
-// 75/96; mesh_separation 1.1 -> 1.0 (2026-11-29, eighteenth session) right gear 77/96
-// (docs/diagnosis.md section 13).
-constexpr double kDocumentedDetection = 0.896;
+// 75/96; mesh_separation 1.1 -> 1.0 (2026-11-29, eighteenth session) right gear 77/96; the
+// baseline's floor the amplitude's for every indicator (2026-11-29, twentieth session: a 10 %
+// load step no longer flagged) detection 85/96 (docs/diagnosis.md section 13).
+constexpr double kDocumentedDetection = 0.885;
 constexpr double kDocumentedRightGear = 0.802;
 constexpr double kDocumentedFalseAlarmsPerBlock = 0.0;
 constexpr double kMargin = 0.05;
