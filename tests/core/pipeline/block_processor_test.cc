@@ -417,7 +417,8 @@ KnockRun RunAKnock(bool transient_gate) {
 // transient gate, which would take the knock out of the averages (next test).
 TEST(BlockProcessorTest, AKnockInOneBlockDoesNotCarryIntoTheNextBlocksScore) {
   KnockRun run = RunAKnock(/*transient_gate=*/false);
-  EXPECT_GT(run.knocked.score.score, 3.0)
+  // Over the limit (it raised NA4 past three limits until the floor became the amplitude's).
+  EXPECT_GT(run.knocked.score.score, 1.0)
       << "the knock should stand out: " << run.knocked.score.indicator;
   for (const BlockConditionIndicators& c : run.knocked.condition) {
     EXPECT_EQ(c.transient_samples, 0) << c.signal;
