@@ -8,20 +8,15 @@
 
 #include "core/evaluation/evaluation_report.h"
 #include "core/pipeline/block_processor.h"
+#include "tests/core/evaluation/scenario_of.h"
 
 namespace gearpath {
 namespace {
 
 Scenario TePulseOnG1() {
-  Scenario s;
-  s.family = PlantFamily::kLumpedPerturbed;
-  s.variant = TrainVariant::kTable1;
-  s.fault = PlantFaultKind::kTePulse;
-  s.gear = "G1";
-  s.input_rpm = 600.0;
-  s.noise = 0.05;
-  s.seed = ScenarioSeed(s.Key());
-  return s;
+  return testing::ScenarioOf(PlantFamily::kLumpedPerturbed, TrainVariant::kTable1,
+                             PlantFaultKind::kTePulse, "G1", 600.0, 0.05, ChannelSet::kSeats,
+                             /*unmodelled=*/false);
 }
 
 TEST(EvaluationRunner, RunsAScenarioReproducibly) {
@@ -134,14 +129,9 @@ TEST(EvaluationRunner, RunsAScenarioWithTheIdentityFrfSet) {
 
 // A healthy modal-housing Table-1 machine at 450 r/min with 10 % noise.
 Scenario HealthyModalHousing() {
-  Scenario s;
-  s.family = PlantFamily::kModalHousing;
-  s.variant = TrainVariant::kTable1;
-  s.fault = PlantFaultKind::kNone;
-  s.input_rpm = 450.0;
-  s.noise = 0.10;
-  s.seed = ScenarioSeed(s.Key());
-  return s;
+  return testing::ScenarioOf(PlantFamily::kModalHousing, TrainVariant::kTable1,
+                             PlantFaultKind::kNone, "", 450.0, 0.10, ChannelSet::kSeats,
+                             /*unmodelled=*/false);
 }
 
 // The speed step: the evaluation blocks come from a second stream of the same healthy plant at

@@ -16,20 +16,15 @@
 #include "core/evaluation/plant_stream.h"
 #include "core/common/accel_block.h"
 #include "core/evaluation/scenario_matrix.h"
+#include "tests/core/evaluation/scenario_of.h"
 
 namespace gearpath {
 namespace {
 
+// Noise-free, without the unmodelled sources: the blocks are the plant's response alone.
 Scenario Healthy(PlantFamily family) {
-  Scenario s;
-  s.family = family;
-  s.variant = TrainVariant::kTable1;
-  s.fault = PlantFaultKind::kNone;
-  s.input_rpm = 450.0;
-  s.noise = 0.0;
-  s.unmodelled = false;
-  s.seed = ScenarioSeed(s.Key());
-  return s;
+  return testing::ScenarioOf(family, TrainVariant::kTable1, PlantFaultKind::kNone, "", 450.0,
+                             0.0, ChannelSet::kSeats, /*unmodelled=*/false);
 }
 
 // The stream's third block (past the start-up) at `load_factor`.
