@@ -161,8 +161,9 @@ struct AnalysisOptions {
   // jitter); outside them the block is not scored and the state is held (docs/diagnosis.md
   // section 10). Why: the baseline holds the machine's response at those speeds. On the tuning
   // families a healthy machine learned at one constant speed and judged after a step of 1 %
-  // was over its limit in 59 % of its blocks, after a step of 0.01 % in 12 %, of 0.003 % in
-  // 1.7 %, of 0.001 % in none.
+  // is over its limit in 55 % of its blocks, after a step of 0.01 % in 5 % (59 % and 12 %
+  // before the baseline's floor became the amplitude's); the default is the largest step that
+  // raised no block when it was chosen (0.001 %), rounded up.
   double speed_tolerance = 2e-5;
   // Persistence (k of the last n blocks), hysteresis and clear delay (core/diagnosis/
   // alarm_model.h): suspected after suspect_k exceedances, alarm after alarm_k, cleared after
