@@ -59,9 +59,8 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   stream_config.block_length = options.block_length;
   Result<std::unique_ptr<PlantStream>> stream = MakePlantStream(*plant, sc, stream_config);
   if (!stream) return Error{stream.error()};
-  // With a speed step the evaluation blocks come from a second stream at the new speed, which
-  // continues the first one's sequence numbers and clock.
-  // A load step likewise.
+  // With a speed or load step the evaluation blocks come from a second stream at the new speed
+  // and load, which continues the first one's sequence numbers and clock.
   std::unique_ptr<PlantStream> stepped;
   if (options.speed_step != 0.0 || options.load_step != 0.0) {
     Scenario at_step = sc;
