@@ -18,11 +18,11 @@ constexpr std::string_view kQueueFull = "queue_full";
 // Every reason a block can be rejected for, so that each machine's series exist from the
 // start at 0 (a counter that appears with its first increment hides that increment from
 // rate()). Reasons found in the counters only (a saved state of another version) are added.
-// kNoSignalInBand is the last RejectReason: a reason added after it must extend this loop.
+// kImplausibleLoad is the last RejectReason: a reason added after it must extend this loop.
 std::set<std::string, std::less<>> RejectReasons(const DaemonMetrics& m) {
   std::set<std::string, std::less<>> reasons;
   for (auto r = static_cast<int>(RejectReason::kNone) + 1;
-       r <= static_cast<int>(RejectReason::kNoSignalInBand); ++r) {
+       r <= static_cast<int>(RejectReason::kImplausibleLoad); ++r) {
     reasons.emplace(ToString(static_cast<RejectReason>(r)));
   }
   reasons.emplace(kQueueFull);

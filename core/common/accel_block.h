@@ -39,6 +39,9 @@ struct AccelBlockView {
   double sample_rate_hz = 0.0;
   double speed_hz = 0.0;              // input-shaft speed; 0 when the block does not carry it
   SpeedSource speed_source = SpeedSource::kUnknown;
+  // Operating load (torque, power, current: the plant's own unit, the same for every block of a
+  // machine); 0 when the block does not carry it. The baseline judges only the loads it learned.
+  double load = 0.0;
   std::span<const ChannelInfo> channels;
   std::uint32_t samples_per_channel = 0;
   std::span<const float> samples;     // planar, channels.size() * samples_per_channel
@@ -55,13 +58,14 @@ struct AccelBlock {
   double sample_rate_hz = 0.0;
   double speed_hz = 0.0;
   SpeedSource speed_source = SpeedSource::kUnknown;
+  double load = 0.0;
   std::vector<ChannelInfo> channels;
   std::uint32_t samples_per_channel = 0;
   std::vector<float> samples;  // planar
 
   AccelBlockView view() const {
-    return {machine_id, sequence,  t0_ns,   sample_rate_hz,      speed_hz,
-            speed_source, channels, samples_per_channel, samples};
+    return {machine_id,   sequence, t0_ns,    sample_rate_hz,      speed_hz,
+            speed_source, load,     channels, samples_per_channel, samples};
   }
 };
 

@@ -112,6 +112,8 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
       outcome.rms_change = fit.rms_change;
     }
     source.NextBlock(faulty, block);
+    const double load = evaluation ? 1.0 + options.load_step : 1.0;
+    block.load = options.load_reading ? load : 0.0;
     const ProcessOutcome po = processor->Process(block.view(), result);
     if (!po.accepted()) {
       return Error{fmt::format("block {} rejected: {}", b, po.message.view())};

@@ -68,6 +68,10 @@ struct RunnerOptions {
   // The evaluation blocks run at the scenario's load x (1 + load_step) (PlantStreamConfig::
   // load_factor): a machine whose load moved after its baseline was learned. 0: no step.
   double load_step = 0.0;
+  // Every block carries its load (AccelBlock::load) relative to the scenario's, as from a
+  // torque reading: 1, or 1 + load_step on the evaluation blocks of a load step. Off, the
+  // blocks carry none and every load is judged (AnalysisOptions::load_tolerance).
+  bool load_reading = true;
   // AnalysisOptions::speed_tolerance of every machine; negative keeps the default.
   double speed_tolerance = -1.0;
   // Give the machine the identity FRF set (core/frf/identity_frf_set.h: every sensor its own

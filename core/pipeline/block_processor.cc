@@ -284,6 +284,9 @@ void BlockProcessor::Impl::ResetLearning() noexcept {
   state.order_tracking_mode = -1;
   state.baseline_speed_lo_hz = 0.0;
   state.baseline_speed_hi_hz = 0.0;
+  state.baseline_load_lo = 0.0;
+  state.baseline_load_hi = 0.0;
+  state.baseline_load_partial = false;
 }
 
 BlockProcessor::BlockProcessor(std::unique_ptr<Impl> impl) noexcept : impl_(std::move(impl)) {}
@@ -514,6 +517,9 @@ LearnedState BlockProcessor::ExportLearnedState() const {
   s.order_tracking_mode = st.order_tracking_mode;
   s.baseline_speed_lo_hz = st.baseline_speed_lo_hz;
   s.baseline_speed_hi_hz = st.baseline_speed_hi_hz;
+  s.baseline_load_lo = st.baseline_load_lo;
+  s.baseline_load_hi = st.baseline_load_hi;
+  s.baseline_load_partial = st.baseline_load_partial;
   return s;
 }
 
@@ -584,6 +590,12 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
   if (!no_range && !(lo > 0.0 && lo <= hi && std::isfinite(hi))) {
     return Error{fmt::format("baseline speed range {}-{} Hz is not 0 < low <= high", lo, hi)};
   }
+  const double load_lo = s.baseline_load_lo;
+  const double load_hi = s.baseline_load_hi;
+  if (!(load_lo == 0.0 && load_hi == 0.0) &&
+      !(load_lo > 0.0 && load_lo <= load_hi && std::isfinite(load_hi))) {
+    return Error{fmt::format("baseline load range {}-{} is not 0 < low <= high", load_lo, load_hi)};
+  }
   if (s.learning == indicator->learned()) {
     return Error{"learning flag contradicts the indicator baseline"};
   }
@@ -611,6 +623,9 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
   st.order_tracking_mode = s.order_tracking_mode;
   st.baseline_speed_lo_hz = s.baseline_speed_lo_hz;
   st.baseline_speed_hi_hz = s.baseline_speed_hi_hz;
+  st.baseline_load_lo = s.baseline_load_lo;
+  st.baseline_load_hi = s.baseline_load_hi;
+  st.baseline_load_partial = s.baseline_load_partial;
   return Status::Ok();
 }
 

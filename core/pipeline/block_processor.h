@@ -165,6 +165,15 @@ struct AnalysisOptions {
   // before the baseline's floor became the amplitude's); the default is the largest step that
   // raised no block when it was chosen (0.001 %), rounded up.
   double speed_tolerance = 2e-5;
+  // Operating load (AccelBlock::load): when every block the baseline learned from carried a
+  // load, a block that carries one is judged only within those loads widened by this fraction
+  // either way; outside them the state is held, as for a speed (docs/diagnosis.md section 10).
+  // Why: the amplitudes and energies grow with the load, and a baseline learned at one load
+  // cannot tell a higher level from a fault that raises it. On the tuning quick matrix a
+  // healthy machine judged after a load step of +10 % raises no block, after +15 % 7.5 % of
+  // them (`gearpath evaluate --match /none/ --load-step L --no-load-reading`); the default is
+  // the largest step that raised none. 1 judges every load. Blocks without a load are judged.
+  double load_tolerance = 0.1;
   // Persistence (k of the last n blocks), hysteresis and clear delay (core/diagnosis/
   // alarm_model.h): suspected after suspect_k exceedances, alarm after alarm_k, cleared after
   // clear_blocks blocks under clear_level x the limit.
@@ -266,6 +275,9 @@ struct BlockScore {
   bool judged = false;
   double baseline_speed_lo_hz = 0.0;  // input speeds the baseline was learned at (0 while
   double baseline_speed_hi_hz = 0.0;  // learning, or unknown for a state saved before them)
+  double baseline_load_lo = 0.0;      // loads the baseline was learned at (0 while learning,
+  double baseline_load_hi = 0.0;      // or when a baseline block carried no load)
+  bool load_outside = false;          // not judged because of the block's load
 };
 
 struct BlockRegularisation {

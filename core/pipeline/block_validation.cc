@@ -54,6 +54,8 @@ std::string_view ToString(RejectReason reason) noexcept {
       return "flat_channel";
     case RejectReason::kNoSignalInBand:
       return "no_signal_in_band";
+    case RejectReason::kImplausibleLoad:
+      return "implausible_load";
   }
   return "unknown";
 }
@@ -125,6 +127,13 @@ RejectReason ValidateBlock(const AccelBlockView& block, const BlockExpectations&
           expected.min_speed_hz, expected.max_speed_hz);
       return RejectReason::kImplausibleSpeed;
     }
+  }
+  // The load only selects whether the baseline judges the block: any finite non-negative value
+  // is a reading (0: not carried); a NaN or a negative load is a broken publisher.
+  if (!std::isfinite(block.load) || block.load < 0.0) {
+    message.Format("load %g of block %llu is not a load (finite and > 0, or 0 when unknown)",
+                   block.load, static_cast<unsigned long long>(block.sequence));
+    return RejectReason::kImplausibleLoad;
   }
   const std::size_t n = block.samples_per_channel;
   if (block.samples.size() != block.channels.size() * n) {

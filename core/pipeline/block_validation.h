@@ -38,6 +38,7 @@ enum class RejectReason : std::uint8_t {
   kImplausibleSpeed,    // speed_hz not finite, negative, or outside the machine's plausible range
   kFlatChannel,         // every sample of a channel is the same value (zero: sensor/bridge dead)
   kNoSignalInBand,      // no transfer path carries energy in the analysis band (path energy)
+  kImplausibleLoad,     // load not finite or negative
 };
 
 // Stable snake_case name, e.g. "wrong_sample_rate" (used as the status topic's counter key).

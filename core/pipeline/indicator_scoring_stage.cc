@@ -23,6 +23,30 @@ bool WithinBaselineSpeeds(const StageContext& ctx) noexcept {
          speed <= st.baseline_speed_hi_hz * (1.0 + tolerance);
 }
 
+// Likewise the level: amplitudes and energies grow with the load. A block without a load, or a
+// baseline that did not learn one, is judged.
+bool WithinBaselineLoads(const StageContext& ctx) noexcept {
+  const MachineState& st = ctx.state;
+  const double load = ctx.block.load;
+  if (!(st.baseline_load_hi > 0.0) || !(load > 0.0)) return true;
+  const double tolerance = ctx.machine.setup.options.load_tolerance;
+  return load >= st.baseline_load_lo * (1.0 - tolerance) &&
+         load <= st.baseline_load_hi * (1.0 + tolerance);
+}
+
+// A baseline block's load into the learned range; one block without a load voids the range.
+void LearnLoad(MachineState& st, double load, bool first) noexcept {
+  if (first) st.baseline_load_partial = false;
+  if (st.baseline_load_partial) return;
+  if (!(load > 0.0)) {
+    st.baseline_load_partial = true;
+    st.baseline_load_lo = st.baseline_load_hi = 0.0;
+    return;
+  }
+  st.baseline_load_lo = first ? load : std::min(st.baseline_load_lo, load);
+  st.baseline_load_hi = first ? load : std::max(st.baseline_load_hi, load);
+}
+
 }  // namespace
 
 Status IndicatorScoringStage::Configure(const MachineContext& machine, BlockWorkspace&) {
@@ -50,6 +74,7 @@ void IndicatorScoringStage::Learn(StageContext& ctx) noexcept {
     const bool first = !(st.baseline_speed_hi_hz > 0.0);
     st.baseline_speed_lo_hz = first ? w.speed_hz : std::min(st.baseline_speed_lo_hz, w.speed_hz);
     st.baseline_speed_hi_hz = first ? w.speed_hz : std::max(st.baseline_speed_hi_hz, w.speed_hz);
+    LearnLoad(st, ctx.block.load, first);
   }
 }
 
@@ -60,7 +85,9 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
   std::fill(w.slot_score.begin(), w.slot_score.end(), 0.0);
   std::fill(w.group_score.begin(), w.group_score.end(), 0.0);
   BlockScore& score = ctx.out.score;
-  if (st.learning || !(w.speed_hz > 0.0) || !WithinBaselineSpeeds(ctx)) {
+  const bool speed_judged = w.speed_hz > 0.0 && WithinBaselineSpeeds(ctx);
+  score.load_outside = !st.learning && speed_judged && !WithinBaselineLoads(ctx);
+  if (st.learning || !speed_judged || score.load_outside) {
     std::fill(w.z.begin(), w.z.end(), 0.0);
     std::fill(w.excess.begin(), w.excess.end(), 0.0);
     st.previous_scored = false;
@@ -180,6 +207,8 @@ void IndicatorScoringStage::Publish(StageContext& ctx) noexcept {
   out.score.baseline_blocks_needed = st.indicator_baseline->blocks_needed();
   out.score.baseline_speed_lo_hz = st.learning ? 0.0 : st.baseline_speed_lo_hz;
   out.score.baseline_speed_hi_hz = st.learning ? 0.0 : st.baseline_speed_hi_hz;
+  out.score.baseline_load_lo = st.learning ? 0.0 : st.baseline_load_lo;
+  out.score.baseline_load_hi = st.learning ? 0.0 : st.baseline_load_hi;
 }
 
 RejectReason IndicatorScoringStage::Process(StageContext& ctx) noexcept {

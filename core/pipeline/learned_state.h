@@ -41,6 +41,11 @@ struct LearnedState {
   // in states saved before they existed, which then judge every speed.
   double baseline_speed_lo_hz = 0.0;
   double baseline_speed_hi_hz = 0.0;
+  // Loads the baseline learned at (MachineState::baseline_load_lo, _hi, _partial); both 0 and
+  // not partial in states saved before them, which then judge every load.
+  double baseline_load_lo = 0.0;
+  double baseline_load_hi = 0.0;
+  bool baseline_load_partial = false;
 };
 
 // FNV-1a over everything that shapes the indicator vector and its values (header comment).

@@ -96,6 +96,8 @@ json ToJson(const LearnedState& s) {
   j["mesh_evidence_sum"] = s.mesh_evidence_sum;
   j["order_tracking_mode"] = s.order_tracking_mode;
   j["baseline_speed_hz"] = {s.baseline_speed_lo_hz, s.baseline_speed_hi_hz};
+  j["baseline_load"] = {s.baseline_load_lo, s.baseline_load_hi};
+  j["baseline_load_partial"] = s.baseline_load_partial;
   return j;
 }
 
@@ -174,6 +176,19 @@ Result<LearnedState> LearnedStateFromJson(const json& j) {
       }
       s.baseline_speed_lo_hz = range[0];
       s.baseline_speed_hi_hz = range[1];
+    }
+    // Absent in states written before it: [0, 0], every load judged.
+    if (j.contains("baseline_load")) {
+      const auto range = j.at("baseline_load").get<std::vector<double>>();
+      if (range.size() != 2) {
+        return Error{"learned state: baseline_load: expected [low, high], got " +
+                     std::to_string(range.size()) + " values"};
+      }
+      s.baseline_load_lo = range[0];
+      s.baseline_load_hi = range[1];
+    }
+    if (j.contains("baseline_load_partial")) {
+      s.baseline_load_partial = j.at("baseline_load_partial").get<bool>();
     }
     return s;
   } catch (const std::exception& e) {

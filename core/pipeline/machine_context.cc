@@ -68,6 +68,10 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
     return Error{at + fmt::format("options.speed_tolerance must be in [0, 1], got {}",
                                   o.speed_tolerance)};
   }
+  if (!(o.load_tolerance >= 0.0 && o.load_tolerance <= 1.0)) {
+    return Error{at +
+                 fmt::format("options.load_tolerance must be in [0, 1], got {}", o.load_tolerance)};
+  }
   if (!(o.mesh_separation >= 1.0 && o.mesh_separation <= 100.0)) {
     return Error{
         at + fmt::format("options.mesh_separation must be in [1, 100], got {}", o.mesh_separation)};

@@ -46,6 +46,12 @@ struct MachineState {
   // while learning or when a state saved before them was imported (then every speed is judged).
   double baseline_speed_lo_hz = 0.0;
   double baseline_speed_hi_hz = 0.0;
+  // Lowest and highest load (AccelBlock::load) of those blocks; both 0 while learning, when a
+  // state saved before them was imported, or when one of the blocks carried no load
+  // (baseline_load_partial): then every load is judged.
+  double baseline_load_lo = 0.0;
+  double baseline_load_hi = 0.0;
+  bool baseline_load_partial = false;
   HealthyMean residual_variance_healthy;             // per condition slot: NA4's reference
   std::optional<HealthyBaseline> envelope_baseline;  // published envelope thresholds
   HealthyMean criterion_healthy;                     // per path: dominant-path criterion

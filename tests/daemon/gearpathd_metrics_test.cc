@@ -90,8 +90,8 @@ TEST(MetricsCatalogue, BlockCountersPerMachineAndEveryRejectReasonFromZero) {
   EXPECT_TRUE(Has(text, "gearpath_blocks_rejected_total{machine=\"b\",reason=\"queue_full\"} 0"));
   EXPECT_TRUE(
       Has(text, "gearpath_blocks_rejected_total{machine=\"a\",reason=\"wrong_sample_rate\"} 0"));
-  // The 14 validation reasons and queue_full, per machine.
-  EXPECT_EQ(CountLinesStartingWith(text, "gearpath_blocks_rejected_total{machine=\"a\""), 15u);
+  // The 15 validation reasons and queue_full, per machine.
+  EXPECT_EQ(CountLinesStartingWith(text, "gearpath_blocks_rejected_total{machine=\"a\""), 16u);
 }
 
 TEST(MetricsCatalogue, LatencyHistogramIsCumulativeOverTheFixedBuckets) {

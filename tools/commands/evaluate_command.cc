@@ -45,6 +45,7 @@ struct EvaluateArgs {
   std::string dump_blocks_path;
   double speed_step = 0.0;
   double load_step = 0.0;
+  bool no_load_reading = false;
   double speed_tolerance = -1.0;
 };
 
@@ -147,6 +148,7 @@ int RunEvaluate(const EvaluateArgs& args) {
   if (args.load_step != 0.0) {
     matrix_label += fmt::format(", evaluation blocks at {:+g} % load", 100.0 * args.load_step);
   }
+  if (args.no_load_reading) matrix_label += ", blocks without a load reading";
   if (args.speed_tolerance >= 0.0) {
     matrix_label += fmt::format(", speed tolerance {:g}", args.speed_tolerance);
   }
@@ -175,6 +177,7 @@ int RunEvaluate(const EvaluateArgs& args) {
   runner.identity_frf = args.frf == "identity";
   runner.speed_step = args.speed_step;
   runner.load_step = args.load_step;
+  runner.load_reading = !args.no_load_reading;
   runner.speed_tolerance = args.speed_tolerance;
   std::ofstream dump;
   std::mutex dump_mutex;
@@ -288,6 +291,9 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
                   "run the evaluation blocks at the plant's load x (1 + STEP), e.g. 0.2: a "
                   "machine whose load moved after its baseline was learned")
       ->check(CLI::Range(-0.9, 2.0));
+  cmd->add_flag("--no-load-reading", args->no_load_reading,
+                "send the blocks without their load (by default each carries it, relative to "
+                "the scenario's, so the machines judge only the loads they learned at)");
   cmd->add_option("--speed-tolerance", args->speed_tolerance,
                   "run the machines with baseline.speed_tolerance set to this (default: the "
                   "daemon's; 1 judges every speed)")

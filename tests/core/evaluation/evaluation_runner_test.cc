@@ -165,22 +165,31 @@ TEST(EvaluationRunner, AHealthyMachineStepsItsSpeedAfterLearning) {
 
 // The load step: the evaluation blocks come from a second stream of the same healthy plant at
 // another load (its healthy transmission errors scaled: every line of the response grows with
-// it). A level change of 10 % stays inside the baseline's relative floor, which is the
-// amplitude's for every indicator (an energy's twice as wide on the log scale, NA4's four
-// times); one of 50 % is flagged, as the physics says it must be by a baseline learned at one
-// load.
+// it). Without a load on the blocks, a level change of 10 % stays inside the baseline's relative
+// floor, which is the amplitude's for every indicator (an energy's twice as wide on the log
+// scale, NA4's four times); one of 50 % is flagged, as the physics says it must be by a baseline
+// learned at one load. With the load on the blocks, the 10 % lies within load_tolerance and is
+// judged, the 50 % outside it and is not: no block judged since learning, so all `learning`.
 TEST(EvaluationRunner, AHealthyMachineWhoseLoadRisesATenthIsNotFlagged) {
   const Scenario s = HealthyModalHousing();
-  for (const double step : {0.1, 0.5}) {
-    RunnerOptions options;
-    options.load_step = step;
-    const ScenarioOutcome out = RunScenario(s, options);
-    ASSERT_TRUE(out.error.empty()) << out.error;
-    EXPECT_EQ(out.score.learning_blocks, 0) << "judged at every load";
-    if (step < 0.2) {
-      EXPECT_EQ(out.score.false_alarm_blocks, 0) << "load +" << step;
-    } else {
-      EXPECT_GE(out.score.false_alarm_blocks, 3) << "load +" << step;
+  for (const bool load_reading : {false, true}) {
+    for (const double step : {0.1, 0.5}) {
+      RunnerOptions options;
+      options.load_step = step;
+      options.load_reading = load_reading;
+      const ScenarioOutcome out = RunScenario(s, options);
+      ASSERT_TRUE(out.error.empty()) << out.error;
+      SCOPED_TRACE(::testing::Message() << "load +" << step << (load_reading ? " read" : ""));
+      if (step < 0.2) {
+        EXPECT_EQ(out.score.learning_blocks, 0) << "judged";
+        EXPECT_EQ(out.score.false_alarm_blocks, 0);
+      } else if (!load_reading) {
+        EXPECT_EQ(out.score.learning_blocks, 0) << "judged at every load";
+        EXPECT_GE(out.score.false_alarm_blocks, 3);
+      } else {
+        EXPECT_EQ(out.score.learning_blocks, kEvaluationBlocks) << "not judged";
+        EXPECT_EQ(out.score.false_alarm_blocks, 0);
+      }
     }
   }
 }

@@ -157,6 +157,21 @@ TEST_F(BlockValidationTest, RejectsASpeedOf1e300NamingTheValueAndTheRange) {
   EXPECT_EQ(Validate(), RejectReason::kImplausibleSpeed);
 }
 
+TEST_F(BlockValidationTest, AcceptsAnyFiniteLoadAndRejectsANaNOrNegativeOneByName) {
+  for (double v : {0.0, 0.5, 1e6, 1e300}) {  // 0: not carried; a large one is only a reading
+    block_.load = v;
+    EXPECT_EQ(Validate(), RejectReason::kNone) << v;
+  }
+  block_.load = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(Validate(), RejectReason::kImplausibleLoad);
+  EXPECT_EQ(Message(), "load nan of block 7 is not a load (finite and > 0, or 0 when unknown)");
+  for (double v :
+       {-1.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()}) {
+    block_.load = v;
+    EXPECT_EQ(Validate(), RejectReason::kImplausibleLoad) << v;
+  }
+}
+
 TEST_F(BlockValidationTest, RejectsANonFiniteOrNegativeSpeedEvenWithoutARange) {
   for (double v :
        {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), -10.0}) {
@@ -209,9 +224,10 @@ TEST(RejectReasonTest, EveryReasonHasADistinctStableName) {
   EXPECT_EQ(ToString(RejectReason::kImplausibleSpeed), "implausible_speed");
   EXPECT_EQ(ToString(RejectReason::kFlatChannel), "flat_channel");
   EXPECT_EQ(ToString(RejectReason::kNoSignalInBand), "no_signal_in_band");
+  EXPECT_EQ(ToString(RejectReason::kImplausibleLoad), "implausible_load");
   EXPECT_NE(ToString(RejectReason::kBadLength), ToString(RejectReason::kEmpty));
   std::set<std::string_view> names;
-  for (int r = 0; r <= static_cast<int>(RejectReason::kNoSignalInBand); ++r) {
+  for (int r = 0; r <= static_cast<int>(RejectReason::kImplausibleLoad); ++r) {
     const std::string_view name = ToString(static_cast<RejectReason>(r));
     EXPECT_NE(name, "unknown") << r;
     EXPECT_TRUE(names.insert(name).second) << name;
