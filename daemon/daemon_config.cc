@@ -239,9 +239,9 @@ Result<DaemonConfig> ParseDaemonConfig(std::string_view text, std::string_view o
   if (config.takeover_after_s == 0.0) config.takeover_after_s = 1.5 * config.status_period_s;
   config.domain_id = c["dds"]["domain_id"];
   const json& t = c["dds"]["topics"];
-  config.topics = {t["accel_block"],          t["dominant_path"], t["suspected_gear"],
-                   t["envelope_indicators"],  t["condition_indicators"], t["status"],
-                   t["machine_health"]};
+  config.topics = {t["accel_block"],    t["accel_block_v2"],      t["dominant_path"],
+                   t["suspected_gear"], t["envelope_indicators"], t["condition_indicators"],
+                   t["status"],         t["machine_health"]};
   config.dds_config_file = c["dds"]["config"];
   config.dds_security = {security["identity_ca"],    security["identity_certificate"],
                          security["identity_private_key"], security["permissions_ca"],

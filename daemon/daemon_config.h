@@ -19,6 +19,7 @@ namespace gearpath::daemon {
 
 struct TopicNames {
   std::string accel_block;
+  std::string accel_block_v2;  // empty: not read
   std::string dominant_path;
   std::string suspected_gear;
   std::string envelope_indicators;

@@ -44,6 +44,7 @@ Clock::duration Seconds(double s) { return duration_cast<Clock::duration>(durati
 
 constexpr dds_attach_t kBlocksToken = 1;
 constexpr dds_attach_t kGuardToken = 2;
+constexpr dds_attach_t kBlocksV2Token = 3;
 constexpr std::uint64_t kRejectionLinesPerPeriod = 10;
 // How long the reader waits at a time for room in a full machine queue before it runs the
 // housekeeping (Status, watchdog) and waits again.
@@ -75,6 +76,8 @@ struct SaveMark {
 // One block taken from DDS, waiting for its machine's worker.
 struct QueuedBlock {
   dds::Owned<gearpath_AccelBlock> sample;
+  dds::Owned<gearpath_AccelBlockV2> sample_v2;  // the block, when it came with its load
+  bool with_load = false;                       // sample_v2 holds it, not sample
   dds::SampleInfo info{};
   std::uint64_t dropped_before = 0;  // blocks of the machine dropped (queue full) just before
   Clock::time_point taken_at{};      // taken from the DDS reader (the latency histogram's start)
@@ -185,6 +188,15 @@ struct Gearpathd::Impl {
               HandleBlock(scratch[w], static_cast<MachineLane&>(lane), block);
             })) {
     waitset.Attach(blocks_ready, kBlocksToken);
+    if (const std::string& name = first.config.topics.accel_block_v2; !name.empty()) {
+      block_v2_topic.emplace(participant, name);
+      block_v2_topic->SetSampleFilter(&MachineIdFilter::AcceptV2, &machine_filter);
+      block_v2_reader.emplace(*block_v2_topic, BlockReaderQos(block_instances));
+      blocks_v2_ready.emplace(*block_v2_reader);
+      waitset.Attach(*blocks_v2_ready, kBlocksV2Token);
+      samples_v2.resize(1);
+      infos_v2.resize(1);
+    }
     waitset.Attach(guard, kGuardToken);
     spdlog::info("processing on {} worker thread(s), up to {} block(s) queued per machine",
                  workers, queue_capacity);
@@ -204,7 +216,7 @@ struct Gearpathd::Impl {
   void Adopt(Generation generation);
   void AdoptPending();
   void DrainBlocks();
-  void Dispatch();
+  void Dispatch(bool with_load);
   void HandleBlock(WorkerScratch& ws, MachineLane& lane, QueuedBlock& block);
   void CountDrops(MachineLane& lane, std::uint64_t dropped, std::uint64_t before_sequence);
   void SnapshotCounters(bool new_period);
@@ -252,6 +264,10 @@ struct Gearpathd::Impl {
   dds::Writer<gearpath_Status> status_writer;
   dds::Writer<gearpath_MachineHealth> health_writer;
   dds::ReadCondition blocks_ready;
+  // The blocks with their load (AccelBlockV2), unless dds.topics.accel_block_v2 is empty.
+  std::optional<dds::Topic<gearpath_AccelBlockV2>> block_v2_topic;
+  std::optional<dds::Reader<gearpath_AccelBlockV2>> block_v2_reader;
+  std::optional<dds::ReadCondition> blocks_v2_ready;
   dds::GuardCondition guard;
   dds::WaitSet waitset;
 
@@ -298,7 +314,12 @@ struct Gearpathd::Impl {
   Clock::time_point last_summary = Clock::now();
   HeapTrimmer heap_trimmer;  // freed heap back to the kernel every 30 s (heap_trim.h)
   std::vector<dds::Owned<gearpath_AccelBlock>> samples;
+  std::vector<dds::Owned<gearpath_AccelBlockV2>> samples_v2;
   std::vector<dds::SampleInfo> infos;
+  std::vector<dds::SampleInfo> infos_v2;
+  // Taken and not yet dispatched (DrainBlocks): samples[0], samples_v2[0].
+  bool held_block = false;
+  bool held_block_v2 = false;
   QueuedBlock offered;  // the block being handed to its lane
   dds::Owned<gearpath_Status> status_sample;
   dds::Owned<gearpath_MachineHealth> health_sample;
@@ -703,12 +724,12 @@ void Gearpathd::Impl::CountDrops(MachineLane& lane, std::uint64_t dropped,
 // Worker thread: one block of one machine, start to publish.
 void Gearpathd::Impl::HandleBlock(WorkerScratch& ws, MachineLane& lane, QueuedBlock& block) {
   if (!block.info.valid_data) return;
-  const gearpath_AccelBlock& sample = *block.sample;
   std::lock_guard processor_lock(lane.processor_mutex);
   MachineRuntime& m = *lane.runtime;
   MachineCounters& c = lane.counters;  // written under counters_mutex: Status reads it
-  if (block.dropped_before > 0) CountDrops(lane, block.dropped_before, sample.sequence_number);
-  const AccelBlockView view = dds::ViewOfWireBlock(sample, ws.channels);
+  const AccelBlockView view = block.with_load ? dds::ViewOfWireBlock(*block.sample_v2, ws.channels)
+                                              : dds::ViewOfWireBlock(*block.sample, ws.channels);
+  if (block.dropped_before > 0) CountDrops(lane, block.dropped_before, view.sequence);
   const ProcessOutcome outcome = m.processor.Process(view, m.result, ws.block);
   if (!outcome.accepted()) {
     const std::string_view reason = ToString(outcome.reason);
@@ -823,8 +844,9 @@ void Gearpathd::Impl::HandleBlock(WorkerScratch& ws, MachineLane& lane, QueuedBl
 // so a burst such as `gearpath replay --fast` loses nothing (docs/topics.md). Only a stop drops
 // the block (counted as queue_full). Lanes are detached and the pool paused or stopped by this
 // thread only, so none of that can happen during the wait.
-void Gearpathd::Impl::Dispatch() {
-  const auto it = lanes.find(dds::GetString(samples[0]->machine_id));
+void Gearpathd::Impl::Dispatch(bool with_load) {
+  const auto it = lanes.find(with_load ? dds::GetString(samples_v2[0]->machine_id)
+                                       : dds::GetString(samples[0]->machine_id));
   if (it == lanes.end()) {
     // Let through by the machine filter just before a reload changed the machines: not ours
     // to judge, so not a rejection (the filter logs foreign ids; this only counts them).
@@ -832,8 +854,13 @@ void Gearpathd::Impl::Dispatch() {
     return;
   }
   MachineLane& lane = *it->second;
-  offered.sample = std::move(samples[0]);
-  offered.info = infos[0];
+  offered.with_load = with_load;
+  if (with_load) {
+    offered.sample_v2 = std::move(samples_v2[0]);
+  } else {
+    offered.sample = std::move(samples[0]);
+  }
+  offered.info = with_load ? infos_v2[0] : infos[0];
   offered.dropped_before = lane.pending_drops;
   offered.taken_at = Clock::now();
   bool queued = pool->Offer(lane, offered);
@@ -850,18 +877,36 @@ void Gearpathd::Impl::Dispatch() {
   } else {
     ++lane.pending_drops;  // counted and logged with the machine's next queued block
   }
-  samples[0] = std::move(offered.sample);
+  if (with_load) {
+    samples_v2[0] = std::move(offered.sample_v2);
+  } else {
+    samples[0] = std::move(offered.sample);
+  }
 }
 
+// One block at a time, until neither block topic holds one. With both topics read, each one's
+// oldest block is held and the one written first (source timestamp) goes first, so a machine's
+// blocks keep their order when they move from one topic to the other.
 void Gearpathd::Impl::DrainBlocks() {
-  while (!stop_requested.load()) {
-    auto taken = block_reader.Take(samples, infos);
+  const auto take = [&](bool with_load) {
+    auto taken = with_load ? block_v2_reader->Take(samples_v2, infos_v2)
+                           : block_reader.Take(samples, infos);
     if (!taken) {
-      spdlog::error("taking AccelBlocks failed: {}", taken.error());
-      return;
+      spdlog::error("taking {} failed: {}", with_load ? "AccelBlockV2s" : "AccelBlocks",
+                    taken.error());
+      return false;
     }
-    if (*taken == 0) return;
-    if (infos[0].valid_data) Dispatch();
+    return *taken > 0 && (with_load ? infos_v2 : infos)[0].valid_data;
+  };
+  while (!stop_requested.load()) {
+    if (!held_block) held_block = take(false);
+    if (block_v2_reader && !held_block_v2) held_block_v2 = take(true);
+    if (!held_block && !held_block_v2) return;
+    const bool with_load =
+        held_block_v2 &&
+        (!held_block || infos_v2[0].source_timestamp < infos[0].source_timestamp);
+    (with_load ? held_block_v2 : held_block) = false;
+    Dispatch(with_load);
     AdoptPending();  // a reload takes effect between two blocks
     Housekeeping(false);
   }
@@ -1018,9 +1063,11 @@ int Gearpathd::Impl::Run(const SignalEvents& signals) {
   std::thread loop([this] { Loop(); });
   NotifySystemd(fmt::format("READY=1\nSTATUS=running: {} machine(s)",
                             lifecycle_config.machines.size()));
-  spdlog::info("gearpathd \"{}\" running on DDS domain {}: {} machine(s), input topic \"{}\"",
+  const TopicNames& topics = lifecycle_config.topics;
+  spdlog::info("gearpathd \"{}\" running on DDS domain {}: {} machine(s), input topic(s) \"{}\"{}",
                lifecycle_config.daemon_id, lifecycle_config.domain_id,
-               lifecycle_config.machines.size(), lifecycle_config.topics.accel_block);
+               lifecycle_config.machines.size(), topics.accel_block,
+               topics.accel_block_v2.empty() ? "" : " and \"" + topics.accel_block_v2 + "\"");
   int exit_code = 0;
   for (;;) {
     const SignalEvent event = signals.Wait(milliseconds(200));

@@ -200,6 +200,11 @@ ParamSpec DdsSection() {
        Object("topics", "Topic names; every daemon and client on a domain must agree on them.",
               {String("accel_block", "Input: blocks of housing accelerations.",
                       "gearpath/AccelBlock", 1, 256),
+               String("accel_block_v2",
+                      "Input: the same blocks with the machine's operating load (AccelBlockV2; "
+                      "version 4 of the contract). Empty: not read (e.g. DDS permissions that "
+                      "do not grant it).",
+                      "gearpath/AccelBlockV2", 0, 256),
                String("dominant_path", "Output: the dominant transfer path per block.",
                       "gearpath/DominantPath", 1, 256),
                String("suspected_gear", "Output: the suspected gear per block.",
@@ -389,6 +394,14 @@ ParamSpec AnalysisSection() {
                       "learned at one constant speed can exceed its limits 0.01 % away). 1 "
                       "judges every speed.",
                       0.0, 1.0, 2e-5),
+               Number("load_tolerance",
+                      "When every baseline block carried a load (AccelBlockV2.load), a block "
+                      "that carries one is judged only within the loads the baseline was "
+                      "learned at, widened by this fraction either way; outside, the state is "
+                      "held and the reason says so (amplitudes and energies grow with the load: "
+                      "a healthy machine learned at one load exceeds its limits 20 % above it). "
+                      "1 judges every load; blocks without a load are always judged.",
+                      0.0, 1.0, 0.1),
                Number("k_sigma",
                       "Published envelope-indicator thresholds = mean + k_sigma x standard "
                       "deviation.",

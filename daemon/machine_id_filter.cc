@@ -41,14 +41,21 @@ std::vector<std::string> MachineIdFilter::TakeNewForeignIds() {
   return out;
 }
 
-bool MachineIdFilter::Accept(const void* sample, void* arg) noexcept {
-  auto* self = static_cast<MachineIdFilter*>(arg);
-  const auto* block = static_cast<const gearpath_AccelBlock*>(sample);
-  const std::string_view id = dds::GetString(block->machine_id);
-  if (self->Admits(id)) return true;
-  self->dropped_.fetch_add(1, std::memory_order_relaxed);
-  self->Remember(id);
+bool MachineIdFilter::Judge(std::string_view id) noexcept {
+  if (Admits(id)) return true;
+  dropped_.fetch_add(1, std::memory_order_relaxed);
+  Remember(id);
   return false;
+}
+
+bool MachineIdFilter::Accept(const void* sample, void* arg) noexcept {
+  const auto* block = static_cast<const gearpath_AccelBlock*>(sample);
+  return static_cast<MachineIdFilter*>(arg)->Judge(dds::GetString(block->machine_id));
+}
+
+bool MachineIdFilter::AcceptV2(const void* sample, void* arg) noexcept {
+  const auto* block = static_cast<const gearpath_AccelBlockV2*>(sample);
+  return static_cast<MachineIdFilter*>(arg)->Judge(dds::GetString(block->machine_id));
 }
 
 }  // namespace gearpath::daemon

@@ -29,6 +29,8 @@ class MachineIdFilter {
   // The filter callback for dds::Topic<gearpath_AccelBlock>::SetSampleFilter (`arg` is the
   // filter). Called on Cyclone's threads; allocation-free.
   static bool Accept(const void* sample, void* arg) noexcept;
+  // The same for dds::Topic<gearpath_AccelBlockV2> (blocks with their load).
+  static bool AcceptV2(const void* sample, void* arg) noexcept;
 
   // Foreign blocks dropped since start.
   std::uint64_t dropped() const noexcept { return dropped_.load(std::memory_order_relaxed); }
@@ -41,6 +43,7 @@ class MachineIdFilter {
   static constexpr std::size_t kRememberedIds = 64;
 
  private:
+  bool Judge(std::string_view machine_id) noexcept;  // Admits, else counted and remembered
   bool Admits(std::string_view machine_id) noexcept;
   void Remember(std::string_view machine_id) noexcept;
 

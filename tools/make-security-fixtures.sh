@@ -60,6 +60,7 @@ cd "$out"
 
 # Topic names as in config/gearpathd.json (dds.topics); change them here if the plant does.
 t_block="gearpath/AccelBlock"
+t_block_v2="gearpath/AccelBlockV2"  # the blocks with their load
 t_results=("gearpath/DominantPath" "gearpath/SuspectedGear" "gearpath/EnvelopeIndicators"
            "gearpath/ConditionIndicators" "gearpath/Status" "gearpath/MachineHealth")
 
@@ -179,10 +180,10 @@ identity acquisition "gearpath acquisition"
 identity monitor "gearpath monitor"
 identity recorder "gearpath recorder"
 # gearpathd also reads Status: a hot standby watches its primary's.
-permissions gearpathd gearpathd "$results" "$t_block;gearpath/Status"
-permissions acquisition "gearpath acquisition" "$t_block" ""
+permissions gearpathd gearpathd "$results" "$t_block;$t_block_v2;gearpath/Status"
+permissions acquisition "gearpath acquisition" "$t_block;$t_block_v2" ""
 permissions monitor "gearpath monitor" "" "$results"
-permissions recorder "gearpath recorder" "" "$t_block"
+permissions recorder "gearpath recorder" "" "$t_block;$t_block_v2"
 rm -f ca_cert.srl
 echo "make-security-fixtures: wrote CA, governance and identities gearpathd, acquisition," \
   "monitor, recorder to $out"

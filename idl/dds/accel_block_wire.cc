@@ -46,7 +46,11 @@ gearpath_SpeedSource WireSpeedSource(SpeedSource source) noexcept {
   return gearpath_SPEED_UNKNOWN;
 }
 
-Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noexcept {
+namespace {
+
+// Both wire block types share every field but AccelBlockV2's load.
+template <typename Wire>
+Status FillCommonFields(const AccelBlockView& block, Wire& out) noexcept {
   if (!SetString(out.machine_id, block.machine_id)) {
     return Error{"machine_id '" + std::string(block.machine_id) + "' is longer than " +
                  std::to_string(gearpath_ID_LENGTH) + " characters"};
@@ -95,8 +99,8 @@ Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noex
   return Status::Ok();
 }
 
-AccelBlockView ViewOfWireBlock(const gearpath_AccelBlock& sample,
-                               std::vector<ChannelInfo>& channels) {
+template <typename Wire>
+AccelBlockView ViewOfCommonFields(const Wire& sample, std::vector<ChannelInfo>& channels) {
   const auto wire = View(sample.channels);
   channels.resize(wire.size());
   for (std::size_t c = 0; c < wire.size(); ++c) {
@@ -115,6 +119,33 @@ AccelBlockView ViewOfWireBlock(const gearpath_AccelBlock& sample,
   view.channels = channels;
   view.samples_per_channel = sample.samples_per_channel;
   view.samples = View(sample.samples);
+  return view;
+}
+
+}  // namespace
+
+Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noexcept {
+  return FillCommonFields(block, out);
+}
+
+Status FillWireBlock(const AccelBlockView& block, std::string_view load_unit,
+                     gearpath_AccelBlockV2& out) noexcept {
+  if (!SetString(out.load_unit, load_unit)) {
+    return Error{"load_unit '" + std::string(load_unit) + "' is longer than 16 characters"};
+  }
+  out.load = block.load;
+  return FillCommonFields(block, out);
+}
+
+AccelBlockView ViewOfWireBlock(const gearpath_AccelBlock& sample,
+                               std::vector<ChannelInfo>& channels) {
+  return ViewOfCommonFields(sample, channels);
+}
+
+AccelBlockView ViewOfWireBlock(const gearpath_AccelBlockV2& sample,
+                               std::vector<ChannelInfo>& channels) {
+  AccelBlockView view = ViewOfCommonFields(sample, channels);
+  view.load = sample.load;
   return view;
 }
 

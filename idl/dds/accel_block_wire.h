@@ -3,6 +3,7 @@
 // so a publisher refuses a block the daemon could never receive instead of truncating it.
 #pragma once
 
+#include <string_view>
 #include <vector>
 
 #include "core/common/accel_block.h"
@@ -15,6 +16,9 @@ namespace gearpath::dds {
 // grown). Fails, leaving `out` unspecified, when an id, unit or sequence exceeds its IDL bound
 // or the samples do not match channels x samples_per_channel.
 Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noexcept;
+// The same for AccelBlockV2, with the block's load (unit: `load_unit`, at most 16 characters).
+Status FillWireBlock(const AccelBlockView& block, std::string_view load_unit,
+                     gearpath_AccelBlockV2& out) noexcept;
 
 // The inverse, for subscribers outside the daemon (`gearpath record`): a view of `sample`'s
 // samples (no copy; valid while `sample` and `channels` live) with the channel descriptions
@@ -26,6 +30,9 @@ Status FillWireBlock(const AccelBlockView& block, gearpath_AccelBlock& out) noex
 gearpath_SpeedSource WireSpeedSource(SpeedSource source) noexcept;
 
 AccelBlockView ViewOfWireBlock(const gearpath_AccelBlock& sample,
+                               std::vector<ChannelInfo>& channels);
+// The same for AccelBlockV2; the view carries its load.
+AccelBlockView ViewOfWireBlock(const gearpath_AccelBlockV2& sample,
                                std::vector<ChannelInfo>& channels);
 
 }  // namespace gearpath::dds

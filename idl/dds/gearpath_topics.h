@@ -26,6 +26,13 @@ struct TopicTraits<gearpath_AccelBlock> {
 };
 
 template <>
+struct TopicTraits<gearpath_AccelBlockV2> {
+  static const dds_topic_descriptor_t& Descriptor() noexcept { return gearpath_AccelBlockV2_desc; }
+  static constexpr std::string_view kName = "gearpath/AccelBlockV2";
+  static constexpr TopicClass kClass = TopicClass::kBlockStream;
+};
+
+template <>
 struct TopicTraits<gearpath_DominantPath> {
   static const dds_topic_descriptor_t& Descriptor() noexcept { return gearpath_DominantPath_desc; }
   static constexpr std::string_view kName = "gearpath/DominantPath";

@@ -149,7 +149,7 @@ TEST(DdsBridge, FaultStateKeepsTheVersion1NumbersAndLearningComesLast) {
   EXPECT_EQ(static_cast<int>(gearpath_SUSPECTED), 1);
   EXPECT_EQ(static_cast<int>(gearpath_ALARM), 2);
   EXPECT_EQ(static_cast<int>(gearpath_LEARNING), 3);
-  EXPECT_EQ(gearpath_CONTRACT_VERSION, 3u);  // version 3 added MachineHealth, no enumerator
+  EXPECT_EQ(gearpath_CONTRACT_VERSION, 4u);  // 3 added MachineHealth, 4 AccelBlockV2; no enumerator
 }
 
 TEST(DdsBridge, EnvelopeIndicatorsCarryTheReconstructedBandAndEveryHarmonic) {

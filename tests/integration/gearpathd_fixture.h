@@ -87,6 +87,8 @@ class GearpathdOverDds : public ::testing::Test {
     participant_ = std::make_unique<dds::Participant>(*domain_);
     block_topic_ = std::make_unique<dds::Topic<gearpath_AccelBlock>>(*participant_);
     block_writer_ = std::make_unique<dds::Writer<gearpath_AccelBlock>>(*block_topic_);
+    block_v2_topic_ = std::make_unique<dds::Topic<gearpath_AccelBlockV2>>(*participant_);
+    block_v2_writer_ = std::make_unique<dds::Writer<gearpath_AccelBlockV2>>(*block_v2_topic_);
     status_topic_ = std::make_unique<dds::Topic<gearpath_Status>>(*participant_);
     status_reader_ = std::make_unique<dds::Reader<gearpath_Status>>(*status_topic_);
     dominant_topic_ = std::make_unique<dds::Topic<gearpath_DominantPath>>(*participant_);
@@ -136,6 +138,8 @@ class GearpathdOverDds : public ::testing::Test {
     dominant_topic_.reset();
     status_reader_.reset();
     status_topic_.reset();
+    block_v2_writer_.reset();
+    block_v2_topic_.reset();
     block_writer_.reset();
     block_topic_.reset();
     participant_.reset();
@@ -186,6 +190,55 @@ class GearpathdOverDds : public ::testing::Test {
     ASSERT_TRUE(ToWire(block, sample));
     Status st = block_writer_->Write(*sample);
     ASSERT_TRUE(st.ok()) << st.error();
+  }
+
+  // The same block with its load, on the AccelBlockV2 topic.
+  void PublishWithLoad(const AccelBlock& block) {
+    dds::Owned<gearpath_AccelBlockV2> sample;
+    Status filled = dds::FillWireBlock(block.view(), "N m", *sample);
+    ASSERT_TRUE(filled.ok()) << filled.error();
+    Status st = block_v2_writer_->Write(*sample);
+    ASSERT_TRUE(st.ok()) << st.error();
+  }
+
+  // Stops the daemon with `signal`, waits until our block writers have lost it (a killed peer
+  // goes when its lease expires), drops the results still unread, then starts a new daemon on
+  // the same configuration and waits until it is ready.
+  void RestartDaemon(int signal) {
+    daemon_->Signal(signal);
+    ASSERT_TRUE(daemon_->WaitExit(30s)) << "gearpathd did not exit on signal " << signal;
+    const auto deadline = std::chrono::steady_clock::now() + 60s;
+    for (;;) {
+      const Result<std::uint32_t> matched = block_writer_->MatchedReaders();
+      const Result<std::uint32_t> matched_v2 = block_v2_writer_->MatchedReaders();
+      ASSERT_TRUE(matched.ok() && matched_v2.ok());
+      if (*matched == 0 && *matched_v2 == 0) break;
+      ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the dead reader stayed matched";
+      std::this_thread::sleep_for(50ms);
+    }
+    DrainResults();
+    ++generation_;
+    daemon_ = std::make_unique<ChildProcess>(
+        GEARPATHD_PATH, std::vector<std::string>{"--config", config_path_},
+        (dir_ / ("gearpathd." + std::to_string(generation_) + ".log")).string());
+    ASSERT_TRUE(daemon_->started());
+    ASSERT_TRUE(WaitStatus([](const gearpath_MachineStatus&) { return true; }, 90s))
+        << daemon_->Log();
+    ASSERT_TRUE(block_writer_->WaitForReaders(1, 30s).ok()) << daemon_->Log();
+    ASSERT_TRUE(block_v2_writer_->WaitForReaders(1, 30s).ok()) << daemon_->Log();
+  }
+
+  // Takes every SuspectedGear and Status sample waiting in our readers.
+  void DrainResults() {
+    std::vector<dds::Owned<gearpath_SuspectedGear>> g(32);
+    std::vector<dds::Owned<gearpath_Status>> s(32);
+    std::vector<dds::SampleInfo> infos(32);
+    for (auto n = gear_reader_->Take(g, infos); n.ok() && *n > 0;
+         n = gear_reader_->Take(g, infos)) {
+    }
+    for (auto n = status_reader_->Take(s, infos); n.ok() && *n > 0;
+         n = status_reader_->Take(s, infos)) {
+    }
   }
 
   // Waits for a Status of our daemon whose entry for our machine satisfies `pred`; also keeps
@@ -258,11 +311,14 @@ class GearpathdOverDds : public ::testing::Test {
   std::mt19937 rng_{12345};
   gearpath_MachineStatus last_status_{};
   int last_state_ = -1;
+  int generation_ = 0;  // daemons restarted (RestartDaemon), for their log files' names
 
   std::unique_ptr<dds::Domain> domain_;
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Topic<gearpath_AccelBlock>> block_topic_;
   std::unique_ptr<dds::Writer<gearpath_AccelBlock>> block_writer_;
+  std::unique_ptr<dds::Topic<gearpath_AccelBlockV2>> block_v2_topic_;
+  std::unique_ptr<dds::Writer<gearpath_AccelBlockV2>> block_v2_writer_;
   std::unique_ptr<dds::Topic<gearpath_Status>> status_topic_;
   std::unique_ptr<dds::Reader<gearpath_Status>> status_reader_;
   std::unique_ptr<dds::Topic<gearpath_DominantPath>> dominant_topic_;

@@ -27,41 +27,6 @@ class GearpathdState : public GearpathdOverDds {
         *gear_reader_, [s](const auto& r) { return r.block_sequence == s; }, 60s);
   }
 
-  // Stops the daemon with `signal`, waits until our block writer has lost it (a killed peer
-  // goes when its lease expires), then starts a new one on the same configuration.
-  void Restart(int signal) {
-    daemon_->Signal(signal);
-    ASSERT_TRUE(daemon_->WaitExit(30s)) << "gearpathd did not exit on signal " << signal;
-    const auto deadline = std::chrono::steady_clock::now() + 60s;
-    for (;;) {
-      const Result<std::uint32_t> matched = block_writer_->MatchedReaders();
-      ASSERT_TRUE(matched.ok()) << matched.error();
-      if (*matched == 0) break;
-      ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the dead reader stayed matched";
-      std::this_thread::sleep_for(50ms);
-    }
-    DrainResults();
-    ++generation_;
-    daemon_ = std::make_unique<ChildProcess>(
-        GEARPATHD_PATH, std::vector<std::string>{"--config", config_path_},
-        (dir_ / ("gearpathd." + std::to_string(generation_) + ".log")).string());
-    ASSERT_TRUE(daemon_->started());
-    ASSERT_TRUE(WaitStatus([](const gearpath_MachineStatus&) { return true; }, 90s))
-        << daemon_->Log();
-    ASSERT_TRUE(block_writer_->WaitForReaders(1, 30s).ok()) << daemon_->Log();
-  }
-
-  void DrainResults() {
-    std::vector<dds::Owned<gearpath_SuspectedGear>> g(32);
-    std::vector<dds::Owned<gearpath_Status>> s(32);
-    std::vector<dds::SampleInfo> infos(32);
-    for (auto n = gear_reader_->Take(g, infos); n.ok() && *n > 0; n = gear_reader_->Take(g, infos)) {
-    }
-    for (auto n = status_reader_->Take(s, infos); n.ok() && *n > 0;
-         n = status_reader_->Take(s, infos)) {
-    }
-  }
-
   void LearnHealthy() {
     GearboxSimulator healthy = Table1Simulator(FaultType::kNone, "", 7);
     for (int i = 0; i < kBaselineBlocks; ++i) {
@@ -72,7 +37,6 @@ class GearpathdState : public GearpathdOverDds {
   }
 
   std::uint64_t sequence_ = 1;
-  int generation_ = 0;
 };
 
 TEST_F(GearpathdState, AfterAKillWithAFractureThePresentAlarmIsResumedNotRelearned) {
@@ -86,7 +50,7 @@ TEST_F(GearpathdState, AfterAKillWithAFractureThePresentAlarmIsResumedNotRelearn
   }
   ASSERT_TRUE(alarmed) << "the fracture never raised an alarm before the restart";
 
-  Restart(SIGKILL);
+  RestartDaemon(SIGKILL);
   // The very first verdict of the new daemon, on the still-fractured gearbox.
   auto first = Judge(broken);
   ASSERT_TRUE(first.has_value()) << daemon_->Log();
@@ -98,7 +62,7 @@ TEST_F(GearpathdState, AfterAKillWithAFractureThePresentAlarmIsResumedNotRelearn
 TEST_F(GearpathdState, ACleanRestartKeepsTheBaselineAndTheCounters) {
   LearnHealthy();
   const std::uint64_t processed = sequence_ - 1;
-  Restart(SIGTERM);
+  RestartDaemon(SIGTERM);
   ASSERT_TRUE(WaitStatus([&](const auto& m) { return m.blocks_processed == processed; }, 30s))
       << "counters after restart: processed " << last_status_.blocks_processed;
   GearboxSimulator healthy = Table1Simulator(FaultType::kNone, "", 99);

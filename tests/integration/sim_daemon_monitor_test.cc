@@ -69,6 +69,7 @@ struct FaultCase {
   std::string fault;
   std::string gear;
   Expect expect;
+  double load = 0.0;  // > 0: the sim publishes AccelBlockV2 blocks carrying this load (--load)
 };
 
 std::ostream& operator<<(std::ostream& os, const FaultCase& c) { return os << c.name; }
@@ -209,6 +210,9 @@ TEST_P(SimDaemonMonitor, TheMonitorShowsTheSeededFaultyGearAsTheSuspectedGear) {
     sim_args.push_back("--gear");
     sim_args.push_back(c.gear);
   }
+  if (c.load > 0.0) {
+    sim_args.insert(sim_args.end(), {"--load", std::to_string(c.load), "--load-unit", "kW"});
+  }
   ToolProcess sim(sim_args, dir_, "sim");
   const std::optional<int> sim_code = sim.Wait(90s);
   ASSERT_TRUE(sim_code.has_value())
@@ -309,6 +313,9 @@ std::vector<FaultCase> AllCases() {
   // blocks but block 23 is blamed on G1 whichever gear wears (G1..G4), so not even "never a
   // wrong gear" holds for it yet.
   cases.push_back({"Healthy", "none", "", Expect::kNoFault});
+  // The same as the first case, every block on AccelBlockV2 with a constant load: the blocks
+  // with their load take the same path to the same verdict.
+  cases.push_back({"FractureOnG1WithItsLoad", "fracture", "G1", Expect::kGear, 75.0});
   return cases;
 }
 

@@ -2,7 +2,8 @@
 // from fastddsgen, participant from config/fastdds-profiles.xml) against a running gearpathd on
 // Cyclone DDS, over loopback.
 //
-// The client publishes AccelBlocks that gearpathd must process, and subscribes to every result
+// The client publishes AccelBlocks, and its last block as an AccelBlockV2 with its load (contract
+// version 4), that gearpathd must process, and subscribes to every result
 // topic. Meanwhile this test's Cyclone readers (the project's own binding) receive the same
 // result samples from the daemon. Every result of every block, and every Status and
 // MachineHealth sample both saw, must decode to the same value field by field in both stacks;

@@ -33,4 +33,21 @@ gearpath::AccelBlock MakeNoiseBlock(const NoiseBlockShape& shape, std::uint64_t 
   return block;
 }
 
+gearpath::AccelBlockV2 WithLoad(const gearpath::AccelBlock& block, double load,
+                                const std::string& load_unit) {
+  gearpath::AccelBlockV2 v2;
+  v2.machine_id(block.machine_id());
+  v2.sequence_number(block.sequence_number());
+  v2.t0_ns(block.t0_ns());
+  v2.sample_rate_hz(block.sample_rate_hz());
+  v2.speed_hz(block.speed_hz());
+  v2.speed_source(block.speed_source());
+  v2.channels(block.channels());
+  v2.samples_per_channel(block.samples_per_channel());
+  v2.samples(block.samples());
+  v2.load(load);
+  v2.load_unit(load_unit);
+  return v2;
+}
+
 }  // namespace gearpath_interop

@@ -29,4 +29,8 @@ struct NoiseBlockShape {
 // number, the noise is seeded by the sequence so a run is reproducible.
 gearpath::AccelBlock MakeNoiseBlock(const NoiseBlockShape& shape, std::uint64_t sequence);
 
+// The same block as an AccelBlockV2 (contract version 4) carrying `load` in `load_unit`.
+gearpath::AccelBlockV2 WithLoad(const gearpath::AccelBlock& block, double load,
+                                const std::string& load_unit);
+
 }  // namespace gearpath_interop

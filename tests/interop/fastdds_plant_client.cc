@@ -7,7 +7,8 @@
 // ConditionIndicators, Status, MachineHealth), waits until it has discovered the daemon (its
 // block writer matched and the daemon's Status and MachineHealth received), publishes
 // `--blocks` AccelBlocks for `--machine`, and exits 0 once it has decoded every result of every
-// block and the daemon's Status and MachineHealth say all blocks were processed; 1 at its
+// block and the daemon's Status and MachineHealth say all blocks were processed (the last block
+// goes out as an AccelBlockV2 with its load, contract version 4); 1 at its
 // deadline, naming what it did not receive. Every sample it decoded is written to `--out` as a
 // JSON line {"topic": "<Type>", "sample": {...}} (fastdds_sample_json.h) for the test to
 // compare with what a Cyclone reader decoded.
@@ -260,6 +261,13 @@ int Run(const Options& o) {
       publisher->create_datawriter_with_profile(block_topic, "gearpath_block_writer");
   if (block_writer == nullptr) Fail("create_datawriter_with_profile(gearpath_block_writer) failed");
   block_writer->get_statuscondition().set_enabled_statuses(dds::StatusMask::publication_matched());
+  dds::Topic* block_v2_topic =
+      MakeTopic(participant, new gearpath::AccelBlockV2PubSubType(), "AccelBlockV2");
+  dds::DataWriter* block_v2_writer =
+      publisher->create_datawriter_with_profile(block_v2_topic, "gearpath_block_writer");
+  if (block_v2_writer == nullptr) Fail("create_datawriter_with_profile(AccelBlockV2) failed");
+  block_v2_writer->get_statuscondition().set_enabled_statuses(
+      dds::StatusMask::publication_matched());
 
   // Every reader's data and the writer's matches wake the loop; the short timeout only bounds
   // the time to notice the deadline.
@@ -270,7 +278,8 @@ int Run(const Options& o) {
                                                    &condition_indicators.data_available(),
                                                    &status.data_available(),
                                                    &machine_health.data_available(),
-                                                   &block_writer->get_statuscondition()};
+                                                   &block_writer->get_statuscondition(),
+                                                   &block_v2_writer->get_statuscondition()};
   for (dds::Condition* c : conditions) (void)waitset.attach_condition(*c);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(o.timeout_s);
   const auto take_all = [&] {
@@ -289,12 +298,16 @@ int Run(const Options& o) {
   // written before its reader knows our writer would be lost to its volatile reader).
   for (;;) {
     take_all();
-    dds::PublicationMatchedStatus matched;
+    dds::PublicationMatchedStatus matched, matched_v2;
     (void)block_writer->get_publication_matched_status(matched);
-    if (matched.current_count >= 1 && progress.Discovered()) break;
+    (void)block_v2_writer->get_publication_matched_status(matched_v2);
+    if (matched.current_count >= 1 && matched_v2.current_count >= 1 && progress.Discovered()) {
+      break;
+    }
     if (std::chrono::steady_clock::now() > deadline) {
       Fail("discovery incomplete at the deadline: block readers matched " +
-           std::to_string(matched.current_count) + ", Status " +
+           std::to_string(matched.current_count) + " and " +
+           std::to_string(matched_v2.current_count) + " (AccelBlockV2), Status " +
            (progress.status_seen ? "seen" : "not seen") + ", MachineHealth " +
            (progress.health_seen ? "seen" : "not seen"));
     }
@@ -303,8 +316,13 @@ int Run(const Options& o) {
 
   for (int seq = 1; seq <= o.blocks; ++seq) {
     gearpath::AccelBlock block = gearpath_interop::MakeNoiseBlock(o.block, seq);
-    if (!block_writer->write(&block))
+    if (seq == o.blocks) {
+      gearpath::AccelBlockV2 with_load = gearpath_interop::WithLoad(block, 42.5, "kW");
+      if (!block_v2_writer->write(&with_load))
+        Fail("write of AccelBlockV2 " + std::to_string(seq) + " failed");
+    } else if (!block_writer->write(&block)) {
       Fail("write of AccelBlock " + std::to_string(seq) + " failed");
+    }
   }
   std::cerr << "fastdds_plant_client: published " << o.blocks << " blocks" << std::endl;
 

@@ -15,6 +15,9 @@
   F(machine_id) F(sequence_number) F(t0_ns) F(sample_rate_hz) F(speed_hz)             \
   F(speed_source) F(channels) F(samples_per_channel) F(samples)
 
+#define GEARPATH_FIELDS_AccelBlockV2(F)                                                \
+  GEARPATH_FIELDS_AccelBlock(F) F(load) F(load_unit)
+
 #define GEARPATH_FIELDS_PathShare(F) F(name) F(share) F(criterion)
 
 #define GEARPATH_FIELDS_DominantPath(F)                                                \
@@ -64,7 +67,8 @@
 
 // Every struct of the IDL, for the check against the IDL text.
 #define GEARPATH_IDL_STRUCTS(S)                                                        \
-  S(ChannelInfo) S(AccelBlock) S(PathShare) S(DominantPath) S(SuspectedGear)           \
-  S(KurtogramBand) S(ShaftIndicator) S(EnvelopeIndicators) S(IndicatorValue)           \
-  S(IndicatorSet) S(ConditionIndicators) S(MachineStatus) S(Status) S(MachineHealth)
+  S(ChannelInfo) S(AccelBlock) S(AccelBlockV2) S(PathShare) S(DominantPath)           \
+  S(SuspectedGear) S(KurtogramBand) S(ShaftIndicator) S(EnvelopeIndicators)            \
+  S(IndicatorValue) S(IndicatorSet) S(ConditionIndicators) S(MachineStatus) S(Status)  \
+  S(MachineHealth)
 // clang-format on

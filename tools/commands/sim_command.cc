@@ -53,6 +53,9 @@ struct SimOptions {
   std::string frf_set_dir;
   std::string frf_decoupling = "eq22";
   bool with_coupled = false;
+  // > 0: every block carries this load reading (published as AccelBlockV2 in load_unit).
+  double load = 0.0;
+  std::string load_unit = "N m";
 };
 
 int RunSim(const SimOptions& o) {
@@ -145,6 +148,7 @@ int RunSim(const SimOptions& o) {
     po.domain_id = o.domain_id;
     po.dds = o.dds;
     po.speedup = o.fast ? 0.0 : o.speedup;
+    if (o.load > 0.0) po.load_unit = o.load_unit;
     try {
       publisher.emplace(po);
     } catch (const std::exception& e) {
@@ -163,6 +167,7 @@ int RunSim(const SimOptions& o) {
   std::vector<double> sum2(sim->channels().size(), 0.0);
   for (std::uint32_t b = 0; b < o.blocks; ++b) {
     (healthy && b < o.healthy_blocks ? *healthy : *sim).NextBlock(block);
+    block.load = o.load;
     if (publisher) {
       if (Status st = publisher->Publish(block.view()); !st) {
         std::fprintf(stderr, "gearpath sim: %s\n", st.error().c_str());
@@ -263,6 +268,12 @@ void AddSimCommand(CLI::App& app, int& exit_code) {
       ->check(Positive());
   cmd->add_flag("--fast", opt->fast,
                 "with --publish: as fast as the daemon takes them (nothing is lost)");
+  cmd->add_option("--load", opt->load,
+                  "with --publish: every block carries this load reading, on the AccelBlockV2 "
+                  "topic (the simulated response does not depend on it)")
+      ->check(CLI::Range(0.0, 1e12));
+  cmd->add_option("--load-unit", opt->load_unit, "unit of --load (at most 16 characters)")
+      ->capture_default_str();
   cmd->add_option("--write-frf-set", opt->frf_set_dir,
                   "write the machine's FRF set (on the block's bin grid) to this directory");
   cmd->add_option("--frf-decoupling", opt->frf_decoupling,

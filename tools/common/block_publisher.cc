@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -12,22 +13,47 @@
 
 namespace gearpath::tools {
 
+namespace {
+
+// One block topic and its writer: AccelBlock, or AccelBlockV2 (with the load).
+template <typename Wire>
+struct BlockEndpoint {
+  BlockEndpoint(const dds::Participant& participant, const std::string& name)
+      : topic(participant, name.empty() ? std::string(dds::TopicTraits<Wire>::kName) : name),
+        writer(topic) {}
+  dds::Topic<Wire> topic;
+  dds::Writer<Wire> writer;
+  dds::Owned<Wire> sample;
+};
+
+}  // namespace
+
 struct BlockPublisher::Impl {
   explicit Impl(const PublisherOptions& o)
       : options(o),
         domain(o.domain_id, ToolDomainConfig(o.dds)),
-        participant(domain, ToolSecurityFiles(o.dds)),
-        topic(participant, o.topic.empty()
-                               ? std::string(dds::TopicTraits<gearpath_AccelBlock>::kName)
-                               : o.topic),
-        writer(topic) {}
+        participant(domain, ToolSecurityFiles(o.dds)) {
+    if (o.load_unit.empty()) {
+      plain.emplace(participant, o.topic);
+    } else {
+      with_load.emplace(participant, o.topic);
+    }
+  }
+
+  // Calls f with whichever endpoint this publisher has.
+  template <typename F>
+  decltype(auto) OnEndpoint(F&& f) {
+    return with_load ? f(*with_load) : f(*plain);
+  }
+  dds_entity_t writer_handle() {
+    return OnEndpoint([](auto& e) { return e.writer.handle(); });
+  }
 
   PublisherOptions options;
   dds::Domain domain;
   dds::Participant participant;
-  dds::Topic<gearpath_AccelBlock> topic;
-  dds::Writer<gearpath_AccelBlock> writer;
-  dds::Owned<gearpath_AccelBlock> sample;
+  std::optional<BlockEndpoint<gearpath_AccelBlock>> plain;
+  std::optional<BlockEndpoint<gearpath_AccelBlockV2>> with_load;
   bool started = false;
   std::int64_t first_t0_ns = 0;
   std::chrono::steady_clock::time_point first_wall;
@@ -47,10 +73,11 @@ Status BlockPublisher::Publish(const AccelBlockView& block) {
       for (;;) {
         const auto left = std::max(std::chrono::steady_clock::duration::zero(),
                                    deadline - std::chrono::steady_clock::now());
-        Status matched =
-            s.writer.WaitForReaders(static_cast<std::uint32_t>(s.options.min_subscribers),
-                                    std::min<std::chrono::steady_clock::duration>(
-                                        left, std::chrono::milliseconds(200)));
+        Status matched = s.OnEndpoint([&](auto& e) {
+          return e.writer.WaitForReaders(static_cast<std::uint32_t>(s.options.min_subscribers),
+                                         std::min<std::chrono::steady_clock::duration>(
+                                             left, std::chrono::milliseconds(200)));
+        });
         if (matched) break;
         if (s.options.stop && s.options.stop->load()) {
           return Error{"stopped while waiting for a daemon to subscribe"};
@@ -69,7 +96,8 @@ Status BlockPublisher::Publish(const AccelBlockView& block) {
         s.first_wall + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                            std::chrono::duration<double>(offset_s / s.options.speedup)));
   }
-  Status filled = dds::FillWireBlock(block, *s.sample);
+  Status filled = s.with_load ? dds::FillWireBlock(block, s.options.load_unit, *s.with_load->sample)
+                              : dds::FillWireBlock(block, *s.plain->sample);
   if (!filled) return Error{"block " + std::to_string(block.sequence) + ": " + filled.error()};
   return WriteOrWait(block);
 }
@@ -91,12 +119,13 @@ Status BlockPublisher::WriteOrWait(const AccelBlockView& block) {
   };
   const auto min = static_cast<std::uint32_t>(std::max(0, s.options.min_subscribers));
   for (;;) {
-    Result<std::uint32_t> matched = s.writer.MatchedReaders();
+    Result<std::uint32_t> matched = s.OnEndpoint([](auto& e) { return e.writer.MatchedReaders(); });
     if (!matched) return Error{matched.error()};
     std::string last_error;
     if (*matched < min) {
       note("no daemon subscribed any more");
-    } else if (Status written = s.writer.Write(*s.sample); !written) {
+    } else if (Status written = s.OnEndpoint([](auto& e) { return e.writer.Write(*e.sample); });
+               !written) {
       // Cyclone's "Timeout": a matched reader did not acknowledge within max_blocking_time.
       if (written.error().find("Timeout") == std::string::npos) return written;
       last_error = written.error();
@@ -107,8 +136,9 @@ Status BlockPublisher::WriteOrWait(const AccelBlockView& block) {
       // Paced (real-time or N x) streams also wait for the acknowledgement: a daemon killed
       // after matching would otherwise swallow every block until its lease expires. A block
       // written again after a crash is at worst rejected by the daemon as a duplicate.
-      const dds_return_t rc = dds_wait_for_acks(s.writer.handle(), DDS_SECS(5));
-      Result<std::uint32_t> after = s.writer.MatchedReaders();
+      const dds_return_t rc = dds_wait_for_acks(s.writer_handle(), DDS_SECS(5));
+      Result<std::uint32_t> after =
+          s.OnEndpoint([](auto& e) { return e.writer.MatchedReaders(); });
       if (rc == DDS_RETCODE_TIMEOUT) {
         note("not acknowledged within 5 s (daemon gone or stalled)");
       } else if (after && *after < min) {
@@ -139,7 +169,7 @@ Status BlockPublisher::WriteOrWait(const AccelBlockView& block) {
 
 Status BlockPublisher::Flush(std::chrono::milliseconds timeout) {
   const dds_return_t rc =
-      dds_wait_for_acks(impl_->writer.handle(), DDS_MSECS(timeout.count()));
+      dds_wait_for_acks(impl_->writer_handle(), DDS_MSECS(timeout.count()));
   if (rc < 0) return Error{dds::DdsErrorMessage("dds_wait_for_acks", rc)};
   return Status::Ok();
 }

@@ -1,4 +1,5 @@
-// BlockPublisher: puts AccelBlocks on the DDS block topic, paced like the acquisition.
+// BlockPublisher: puts AccelBlocks on the DDS block topic, paced like the acquisition; with a
+// load unit, AccelBlockV2s carrying each block's load (contract version 4) instead.
 //
 // Shared by the tools that feed the daemon (`gearpath sim`, `gearpath replay`). Pacing follows
 // each block's t0: real time, N times faster, or as fast as the subscribers take them. The block
@@ -21,7 +22,10 @@ namespace gearpath::tools {
 struct PublisherOptions {
   int domain_id = 0;
   DdsOptions dds;           // --dds-config, --dds-security
-  std::string topic;        // empty = the default AccelBlock topic name
+  std::string topic;        // empty = the default AccelBlock (or AccelBlockV2) topic name
+  // Non-empty: publish AccelBlockV2 with each block's load (AccelBlock::load) in this unit,
+  // e.g. "N m" (at most 16 characters).
+  std::string load_unit;
   double speedup = 1.0;     // 1 = real time, N = N times faster, 0 = as fast as possible
   int min_subscribers = 1;  // wait for this many matched readers before the first block
   std::chrono::milliseconds match_timeout{10000};
