@@ -50,6 +50,19 @@ FaultState ParseFaultState(const std::string& name) {
   throw std::invalid_argument("alarm.state: unknown fault state \"" + name + "\"");
 }
 
+// An optional [low, high] pair; left as it is when absent.
+Status ReadRange(const json& parent, const char* key, double& lo, double& hi) {
+  if (!parent.contains(key)) return Status::Ok();
+  const auto range = parent.at(key).get<std::vector<double>>();
+  if (range.size() != 2) {
+    return Error{std::string("learned state: ") + key + ": expected [low, high], got " +
+                 std::to_string(range.size()) + " values"};
+  }
+  lo = range[0];
+  hi = range[1];
+  return Status::Ok();
+}
+
 }  // namespace
 
 json ToJson(const LearnedState& s) {
@@ -167,25 +180,14 @@ Result<LearnedState> LearnedStateFromJson(const json& j) {
       return Error{"learned state: order_tracking_mode: " + std::to_string(s.order_tracking_mode) +
                    " is not -1, 0 or 1"};
     }
-    // Absent in states written before it: [0, 0], every speed judged.
-    if (j.contains("baseline_speed_hz")) {
-      const auto range = j.at("baseline_speed_hz").get<std::vector<double>>();
-      if (range.size() != 2) {
-        return Error{"learned state: baseline_speed_hz: expected [low, high], got " +
-                     std::to_string(range.size()) + " values"};
-      }
-      s.baseline_speed_lo_hz = range[0];
-      s.baseline_speed_hi_hz = range[1];
+    // Absent in states written before them: [0, 0], every speed and every load judged.
+    if (Status st = ReadRange(j, "baseline_speed_hz", s.baseline_speed_lo_hz,
+                              s.baseline_speed_hi_hz);
+        !st) {
+      return Error{st.error()};
     }
-    // Absent in states written before it: [0, 0], every load judged.
-    if (j.contains("baseline_load")) {
-      const auto range = j.at("baseline_load").get<std::vector<double>>();
-      if (range.size() != 2) {
-        return Error{"learned state: baseline_load: expected [low, high], got " +
-                     std::to_string(range.size()) + " values"};
-      }
-      s.baseline_load_lo = range[0];
-      s.baseline_load_hi = range[1];
+    if (Status st = ReadRange(j, "baseline_load", s.baseline_load_lo, s.baseline_load_hi); !st) {
+      return Error{st.error()};
     }
     if (j.contains("baseline_load_partial")) {
       s.baseline_load_partial = j.at("baseline_load_partial").get<bool>();

@@ -84,12 +84,13 @@ inline GearboxSimulator MakeSimulator(const Machine& m, FaultType type, const st
 
 // Feeds `count` blocks; returns the last result.
 inline BlockResult RunBlocks(BlockProcessor& p, GearboxSimulator& sim, int count,
-                      std::uint64_t& sequence) {
+                             std::uint64_t& sequence, double load = 0.0) {
   AccelBlock block;
   BlockResult result;
   for (int i = 0; i < count; ++i) {
     sim.NextBlock(block);
     block.sequence = sequence++;
+    block.load = load;  // AccelBlock::load; 0: not carried
     const ProcessOutcome o = p.Process(block.view(), result);
     EXPECT_TRUE(o.accepted()) << o.message.view();
   }
