@@ -16,43 +16,15 @@ namespace {
 
 using std::chrono::seconds;
 
-// The data representations a writer of T offers. Cyclone 0.10 picks them from the type when
-// the QoS does not say: {XCDR1, XCDR2} for a type that is final throughout, {XCDR2} alone for
-// an @appendable one (contract version 1, which Fast DDS 2.x could not read); its writer
-// encodes in the first one offered.
-template <typename T>
-std::vector<dds_data_representation_id_t> OfferedRepresentations(const Participant& p) {
-  Topic<T> topic(p);
-  Writer<T> writer(topic);
-  dds_qos_t* qos = dds_create_qos();
-  std::vector<dds_data_representation_id_t> out;
-  if (dds_get_qos(writer.handle(), qos) == DDS_RETCODE_OK) {
-    uint32_t n = 0;
-    dds_data_representation_id_t* values = nullptr;
-    if (dds_qget_data_representation(qos, &n, &values)) {
-      out.assign(values, values + n);
-      dds_free(values);
-    }
-  }
-  dds_delete_qos(qos);
-  return out;
-}
-
-template <typename T>
-void ExpectWrittenInXcdr1(const Participant& p) {
-  const auto offered = OfferedRepresentations<T>(p);
-  ASSERT_FALSE(offered.empty()) << TopicTraits<T>::kName;
-  EXPECT_EQ(offered.front(), DDS_DATA_REPRESENTATION_XCDR1) << TopicTraits<T>::kName;
-}
-
+// ExpectWrittenInXcdr1: loopback_test_domains.h.
 TEST(ContractV2, EveryTopicIsWrittenInXcdr1WhichFastDds2Reads) {
   testing::LoopbackPair pair;
-  ExpectWrittenInXcdr1<gearpath_AccelBlock>(pair.publisher);
-  ExpectWrittenInXcdr1<gearpath_DominantPath>(pair.publisher);
-  ExpectWrittenInXcdr1<gearpath_SuspectedGear>(pair.publisher);
-  ExpectWrittenInXcdr1<gearpath_EnvelopeIndicators>(pair.publisher);
-  ExpectWrittenInXcdr1<gearpath_ConditionIndicators>(pair.publisher);
-  ExpectWrittenInXcdr1<gearpath_Status>(pair.publisher);
+  testing::ExpectWrittenInXcdr1<gearpath_AccelBlock>(pair.publisher);
+  testing::ExpectWrittenInXcdr1<gearpath_DominantPath>(pair.publisher);
+  testing::ExpectWrittenInXcdr1<gearpath_SuspectedGear>(pair.publisher);
+  testing::ExpectWrittenInXcdr1<gearpath_EnvelopeIndicators>(pair.publisher);
+  testing::ExpectWrittenInXcdr1<gearpath_ConditionIndicators>(pair.publisher);
+  testing::ExpectWrittenInXcdr1<gearpath_Status>(pair.publisher);
 }
 
 TEST(ContractV2, TheVersionAndTheNewTopicNameAreThoseDocumented) {

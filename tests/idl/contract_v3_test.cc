@@ -29,17 +29,7 @@ TEST(ContractV3, TheVersionAndTheNewTopicAreThoseDocumented) {
 
 TEST(ContractV3, MachineHealthIsWrittenInXcdr1AndKeyedByDaemonAndMachine) {
   testing::LoopbackPair pair;
-  Topic<gearpath_MachineHealth> topic(pair.publisher);
-  Writer<gearpath_MachineHealth> writer(topic);
-  dds_qos_t* qos = dds_create_qos();
-  ASSERT_EQ(dds_get_qos(writer.handle(), qos), DDS_RETCODE_OK);
-  uint32_t n = 0;
-  dds_data_representation_id_t* values = nullptr;
-  ASSERT_TRUE(dds_qget_data_representation(qos, &n, &values));
-  ASSERT_GT(n, 0u);
-  EXPECT_EQ(values[0], DDS_DATA_REPRESENTATION_XCDR1);
-  dds_free(values);
-  dds_delete_qos(qos);
+  testing::ExpectWrittenInXcdr1<gearpath_MachineHealth>(pair.publisher);
 
   const dds_topic_descriptor_t& d = gearpath_MachineHealth_desc;
   ASSERT_EQ(d.m_nkeys, 2u);

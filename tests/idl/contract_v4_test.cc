@@ -30,17 +30,7 @@ TEST(ContractV4, TheVersionAndTheNewTopicAreThoseDocumented) {
 
 TEST(ContractV4, AccelBlockV2IsWrittenInXcdr1) {
   testing::LoopbackPair pair;
-  Topic<gearpath_AccelBlockV2> topic(pair.publisher);
-  Writer<gearpath_AccelBlockV2> writer(topic);
-  dds_qos_t* qos = dds_create_qos();
-  ASSERT_EQ(dds_get_qos(writer.handle(), qos), DDS_RETCODE_OK);
-  uint32_t n = 0;
-  dds_data_representation_id_t* values = nullptr;
-  ASSERT_TRUE(dds_qget_data_representation(qos, &n, &values));
-  ASSERT_GT(n, 0u);
-  EXPECT_EQ(values[0], DDS_DATA_REPRESENTATION_XCDR1);
-  dds_free(values);
-  dds_delete_qos(qos);
+  testing::ExpectWrittenInXcdr1<gearpath_AccelBlockV2>(pair.publisher);
 }
 
 TEST(ContractV4, ABlockWithItsLoadArrivesAsItWasFilled) {
@@ -66,16 +56,7 @@ TEST(ContractV4, ABlockWithItsLoadArrivesAsItWasFilled) {
   ASSERT_TRUE(link.writer.Write(*sample));
   std::vector<Owned<gearpath_AccelBlockV2>> got(1);
   std::vector<SampleInfo> infos(1);
-  std::size_t taken = 0;
-  const auto deadline = std::chrono::steady_clock::now() + seconds(10);
-  while (taken == 0 && std::chrono::steady_clock::now() < deadline) {
-    std::array<dds_attach_t, 1> triggered{};
-    ASSERT_TRUE(link.waitset.Wait(triggered, seconds(1)));
-    auto n = link.reader.Take(got, infos);
-    ASSERT_TRUE(n.ok()) << n.error();
-    taken = *n;
-  }
-  ASSERT_EQ(taken, 1u);
+  ASSERT_EQ(testing::TakeWithin(link.reader, link.waitset, got, infos, seconds(10)), 1u);
   ASSERT_TRUE(infos[0].valid_data);
   EXPECT_STREQ(got[0]->load_unit, "N m");
   std::vector<ChannelInfo> channels;

@@ -10,9 +10,13 @@
 // stay on loopback whatever CYCLONEDDS_URI says.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
+#include <chrono>
 #include <string>
+#include <vector>
 
 #include "idl/dds/gearpath_topics.h"
 #include "idl/dds/topic.h"
@@ -69,5 +73,53 @@ struct LoopbackLink {
   ReadCondition data;
   WaitSet waitset;
 };
+
+// The data representations a writer of T offers. Cyclone 0.10 picks them from the type when
+// the QoS does not say: {XCDR1, XCDR2} for a type that is final throughout, {XCDR2} alone for
+// an @appendable one (contract version 1, which Fast DDS 2.x could not read); its writer
+// encodes in the first one offered.
+template <typename T>
+std::vector<dds_data_representation_id_t> OfferedRepresentations(const Participant& p) {
+  Topic<T> topic(p);
+  Writer<T> writer(topic);
+  dds_qos_t* qos = dds_create_qos();
+  std::vector<dds_data_representation_id_t> out;
+  if (dds_get_qos(writer.handle(), qos) == DDS_RETCODE_OK) {
+    uint32_t n = 0;
+    dds_data_representation_id_t* values = nullptr;
+    if (dds_qget_data_representation(qos, &n, &values)) {
+      out.assign(values, values + n);
+      dds_free(values);
+    }
+  }
+  dds_delete_qos(qos);
+  return out;
+}
+
+template <typename T>
+void ExpectWrittenInXcdr1(const Participant& p) {
+  const auto offered = OfferedRepresentations<T>(p);
+  ASSERT_FALSE(offered.empty()) << TopicTraits<T>::kName;
+  EXPECT_EQ(offered.front(), DDS_DATA_REPRESENTATION_XCDR1) << TopicTraits<T>::kName;
+}
+
+// Waits up to `timeout` for `reader` (attached to `waitset`) to hold samples and takes them;
+// the number taken, 0 at the deadline.
+template <typename T>
+std::size_t TakeWithin(Reader<T>& reader, WaitSet& waitset, std::vector<Owned<T>>& samples,
+                       std::vector<SampleInfo>& infos, std::chrono::seconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::array<dds_attach_t, 1> triggered{};
+    if (!waitset.Wait(triggered, std::chrono::seconds(1))) return 0;
+    Result<std::size_t> n = reader.Take(samples, infos);
+    if (!n) {
+      ADD_FAILURE() << n.error();
+      return 0;
+    }
+    if (*n > 0) return *n;
+  }
+  return 0;
+}
 
 }  // namespace gearpath::dds::testing

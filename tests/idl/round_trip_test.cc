@@ -80,16 +80,7 @@ TEST(RoundTrip, AccelBlockWithEightChannelsOf4096SamplesArrivesBitExact) {
 
   std::vector<Owned<gearpath_AccelBlock>> received(4);
   std::vector<SampleInfo> infos(4);
-  std::size_t taken = 0;
-  const auto deadline = std::chrono::steady_clock::now() + seconds(10);
-  while (taken == 0 && std::chrono::steady_clock::now() < deadline) {
-    std::array<dds_attach_t, 1> triggered{};
-    ASSERT_TRUE(waitset.Wait(triggered, seconds(1)));
-    Result<std::size_t> n = reader.Take(received, infos);
-    ASSERT_TRUE(n) << n.error();
-    taken = *n;
-  }
-  ASSERT_EQ(taken, 1U);
+  ASSERT_EQ(testing::TakeWithin(reader, waitset, received, infos, seconds(10)), 1U);
   ASSERT_TRUE(infos[0].valid_data);
   EXPECT_EQ(infos[0].instance_state, DDS_IST_ALIVE);
 

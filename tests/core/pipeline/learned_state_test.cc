@@ -163,9 +163,11 @@ TEST(LearnedStateTest, AStateWithoutMeshEvidenceSumsStartsThemFromZero) {
   EXPECT_NE(st.error().find("mesh_evidence_sum"), std::string::npos) << st.error();
 }
 
+void ExpectBadRangesRefused(const LearnedState& good, BlockProcessor& p);
+
 // The speeds the baseline learned at travel with it. A state saved before they existed reads
 // as [0, 0] and judges every speed, as its machine did; a range that is not 0 < low <= high
-// is refused.
+// is refused, as is a load range (operating_load_test.cc has the rest of the load's).
 TEST(LearnedStateTest, TheLearnedSpeedRangeTravelsWithTheBaseline) {
   const Machine& m = Table1Machine();
   std::uint64_t seq = 1;
@@ -192,21 +194,39 @@ TEST(LearnedStateTest, TheLearnedSpeedRangeTravelsWithTheBaseline) {
   r = RunBlocks(legacy.value(), faster, 1, seq);
   EXPECT_TRUE(r.score.judged) << r.verdict.reason.view();
 
-  for (const auto& [lo, hi] : {std::pair{11.0, 10.0}, std::pair{0.0, 10.0},
-                               std::pair{10.0, std::numeric_limits<double>::infinity()},
-                               std::pair{std::nan(""), 10.0}}) {
-    LearnedState bad = learned.ExportLearnedState();
-    bad.baseline_speed_lo_hz = lo;
-    bad.baseline_speed_hi_hz = hi;
-    const Status st = legacy->ImportLearnedState(bad);
-    ASSERT_FALSE(st.ok()) << lo << "-" << hi;
-    EXPECT_NE(st.error().find("speed range"), std::string::npos) << st.error();
+  ExpectBadRangesRefused(learned.ExportLearnedState(), legacy.value());
+}
+
+// Both learned ranges (speed, load): one that is not 0 < low <= high, finite, is refused on
+// import, and one of three values on reading the JSON, each by name.
+void ExpectBadRangesRefused(const LearnedState& good, BlockProcessor& p) {
+  struct Range {
+    double LearnedState::*lo;
+    double LearnedState::*hi;
+    const char* refusal;
+    const char* key;
+  };
+  for (const Range& range :
+       {Range{&LearnedState::baseline_speed_lo_hz, &LearnedState::baseline_speed_hi_hz,
+              "speed range", "baseline_speed_hz"},
+        Range{&LearnedState::baseline_load_lo, &LearnedState::baseline_load_hi, "load range",
+              "baseline_load"}}) {
+    for (const auto& [lo, hi] : {std::pair{11.0, 10.0}, std::pair{0.0, 10.0},
+                                 std::pair{10.0, std::numeric_limits<double>::infinity()},
+                                 std::pair{std::nan(""), 10.0}}) {
+      LearnedState bad = good;
+      bad.*range.lo = lo;
+      bad.*range.hi = hi;
+      const Status st = p.ImportLearnedState(bad);
+      ASSERT_FALSE(st.ok()) << range.key << " " << lo << "-" << hi;
+      EXPECT_NE(st.error().find(range.refusal), std::string::npos) << st.error();
+    }
+    nlohmann::json three = ToJson(good);
+    three[range.key] = {1.0, 2.0, 3.0};
+    auto refused = LearnedStateFromJson(three);
+    ASSERT_FALSE(refused.ok()) << range.key;
+    EXPECT_NE(refused.error().find(range.key), std::string::npos) << refused.error();
   }
-  nlohmann::json three = ToJson(learned.ExportLearnedState());
-  three["baseline_speed_hz"] = {1.0, 2.0, 3.0};
-  auto refused = LearnedStateFromJson(three);
-  ASSERT_FALSE(refused.ok());
-  EXPECT_NE(refused.error().find("baseline_speed_hz"), std::string::npos) << refused.error();
 }
 
 TEST(LearnedStateTest, InconsistentPartsAreRefusedAndNamed) {
