@@ -8,6 +8,7 @@
 #include <optional>
 #include <exception>
 #include <memory>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -583,18 +584,13 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
   if (s.residual_variance_blocks < 0 || s.criterion_blocks < 0) {
     return Error{"negative block counts"};
   }
-  // Both 0 (saved before the range existed) or 0 < lo <= hi, finite.
-  const double lo = s.baseline_speed_lo_hz;
-  const double hi = s.baseline_speed_hi_hz;
-  const bool no_range = lo == 0.0 && hi == 0.0;
-  if (!no_range && !(lo > 0.0 && lo <= hi && std::isfinite(hi))) {
-    return Error{fmt::format("baseline speed range {}-{} Hz is not 0 < low <= high", lo, hi)};
-  }
-  const double load_lo = s.baseline_load_lo;
-  const double load_hi = s.baseline_load_hi;
-  if (!(load_lo == 0.0 && load_hi == 0.0) &&
-      !(load_lo > 0.0 && load_lo <= load_hi && std::isfinite(load_hi))) {
-    return Error{fmt::format("baseline load range {}-{} is not 0 < low <= high", load_lo, load_hi)};
+  // Each learned range: both 0 (none, or saved before it existed) or 0 < lo <= hi, finite.
+  for (const auto& [what, lo, hi] :
+       {std::tuple{"speed range", s.baseline_speed_lo_hz, s.baseline_speed_hi_hz},
+        std::tuple{"load range", s.baseline_load_lo, s.baseline_load_hi}}) {
+    if (!(lo == 0.0 && hi == 0.0) && !(lo > 0.0 && lo <= hi && std::isfinite(hi))) {
+      return Error{fmt::format("baseline {} {}-{} is not 0 < low <= high", what, lo, hi)};
+    }
   }
   if (s.learning == indicator->learned()) {
     return Error{"learning flag contradicts the indicator baseline"};

@@ -12,26 +12,28 @@
 namespace gearpath {
 namespace {
 
+// `value` within the learned [lo, hi] widened by `tolerance` either way; no range (hi 0: a state
+// saved before it existed, or a baseline that learned none) judges everything.
+bool WithinLearnedRange(double value, double lo, double hi, double tolerance) noexcept {
+  if (!(hi > 0.0)) return true;
+  return value >= lo * (1.0 - tolerance) && value <= hi * (1.0 + tolerance);
+}
+
 // The baseline holds the response at the speeds it learned at: the housing's transfer moves
 // with the mesh frequency, so a block at another speed is not comparable with it.
 bool WithinBaselineSpeeds(const StageContext& ctx) noexcept {
   const MachineState& st = ctx.state;
-  if (!(st.baseline_speed_hi_hz > 0.0)) return true;  // a state saved before the range existed
-  const double tolerance = ctx.machine.setup.options.speed_tolerance;
-  const double speed = ctx.work.speed_hz;
-  return speed >= st.baseline_speed_lo_hz * (1.0 - tolerance) &&
-         speed <= st.baseline_speed_hi_hz * (1.0 + tolerance);
+  return WithinLearnedRange(ctx.work.speed_hz, st.baseline_speed_lo_hz, st.baseline_speed_hi_hz,
+                            ctx.machine.setup.options.speed_tolerance);
 }
 
-// Likewise the level: amplitudes and energies grow with the load. A block without a load, or a
-// baseline that did not learn one, is judged.
+// Likewise the level: amplitudes and energies grow with the load. A block without a load is
+// judged.
 bool WithinBaselineLoads(const StageContext& ctx) noexcept {
   const MachineState& st = ctx.state;
   const double load = ctx.block.load;
-  if (!(st.baseline_load_hi > 0.0) || !(load > 0.0)) return true;
-  const double tolerance = ctx.machine.setup.options.load_tolerance;
-  return load >= st.baseline_load_lo * (1.0 - tolerance) &&
-         load <= st.baseline_load_hi * (1.0 + tolerance);
+  return !(load > 0.0) || WithinLearnedRange(load, st.baseline_load_lo, st.baseline_load_hi,
+                                             ctx.machine.setup.options.load_tolerance);
 }
 
 // A baseline block's load into the learned range; one block without a load voids the range.
