@@ -40,6 +40,16 @@ std::string Quoted(const std::string& s) { return "\"" + s + "\""; }
 
 json DoubleJson(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
+// Version 2 only when there is a load to keep: recordings of plain AccelBlocks stay version 1,
+// readable by every earlier build. A NaN load counts (it is kept, and the daemon rejects it).
+bool CarriesLoad(const RecordingLayout& layout, const std::vector<RecordedBlockInfo>& blocks) {
+  if (!layout.load_unit.empty()) return true;
+  for (const RecordedBlockInfo& b : blocks) {
+    if (b.load != 0.0) return true;
+  }
+  return false;
+}
+
 json ManifestOf(const RecordingLayout& layout, const std::vector<RecordedBlockInfo>& blocks) {
   json channels = json::array();
   for (const ChannelInfo& c : layout.channels) {
@@ -48,20 +58,24 @@ json ManifestOf(const RecordingLayout& layout, const std::vector<RecordedBlockIn
                         {"unit", c.unit},
                         {"sensitivity_mv_per_unit", DoubleJson(c.sensitivity)}});
   }
-  json sequence = json::array(), t0 = json::array(), speed = json::array(), source = json::array();
+  const bool with_load = CarriesLoad(layout, blocks);
+  json sequence = json::array(), t0 = json::array(), speed = json::array(), source = json::array(),
+       load = json::array();
   for (const RecordedBlockInfo& b : blocks) {
     sequence.push_back(b.sequence);
     t0.push_back(b.t0_ns);
     speed.push_back(DoubleJson(b.speed_hz));
     source.push_back(SpeedSourceName(b.speed_source));
+    if (with_load) load.push_back(DoubleJson(b.load));
   }
   json m;
   m["format"] = kRecordingFormatName;
-  m["format_version"] = kRecordingFormatVersion;
+  m["format_version"] = with_load ? kRecordingFormatVersion : 1;
   m["machine_id"] = layout.machine_id;
   m["sample_rate_hz"] = DoubleJson(layout.sample_rate_hz);
   m["samples_per_channel"] = layout.samples_per_channel;
   m["channels"] = channels;
+  if (with_load) m["load_unit"] = layout.load_unit;
   m["samples"] = {{"file", kRecordingSamplesName},
                   {"dtype", "float32"},
                   {"shape", {blocks.size(), layout.channels.size(), layout.samples_per_channel}},
@@ -71,6 +85,7 @@ json ManifestOf(const RecordingLayout& layout, const std::vector<RecordedBlockIn
                  {"t0_ns", t0},
                  {"speed_hz", speed},
                  {"speed_source", source}};
+  if (with_load) m["blocks"]["load"] = load;
   return m;
 }
 
@@ -128,6 +143,7 @@ constexpr JsonReadLimits kRecordingJsonLimits{kMaxJsonDepth, std::size_t{1} << 3
 // recording is opened, so a bad channel name fails before any file is written.
 std::string LayoutUtf8Problem(const RecordingLayout& layout) {
   if (auto why = Utf8Problem(layout.machine_id)) return "machine_id is not UTF-8: " + *why;
+  if (auto why = Utf8Problem(layout.load_unit)) return "load_unit is not UTF-8: " + *why;
   for (std::size_t c = 0; c < layout.channels.size(); ++c) {
     const ChannelInfo& ch = layout.channels[c];
     for (const auto& [field, text] : {std::pair{"sensor", &ch.sensor}, std::pair{"unit", &ch.unit}}) {
@@ -224,6 +240,8 @@ Result<SpeedSource> ParseSpeedSourceName(const std::string& name) {
       Quoted(name)};
 }
 
+bool Recording::carries_load() const { return CarriesLoad(layout, blocks); }
+
 AccelBlockView Recording::block(std::size_t i) const {
   const RecordedBlockInfo& b = blocks[i];
   AccelBlockView v;
@@ -233,20 +251,22 @@ AccelBlockView Recording::block(std::size_t i) const {
   v.sample_rate_hz = layout.sample_rate_hz;
   v.speed_hz = b.speed_hz;
   v.speed_source = b.speed_source;
+  v.load = b.load;
   v.channels = layout.channels;
   v.samples_per_channel = layout.samples_per_channel;
   v.samples = std::span<const float>(samples).subspan(i * block_values(), block_values());
   return v;
 }
 
-RecordingLayout LayoutOf(const AccelBlockView& block) {
+RecordingLayout LayoutOf(const AccelBlockView& block, std::string load_unit) {
   return {std::string(block.machine_id), block.sample_rate_hz,
           std::vector<ChannelInfo>(block.channels.begin(), block.channels.end()),
-          block.samples_per_channel};
+          block.samples_per_channel, std::move(load_unit)};
 }
 
-bool MatchesLayout(const RecordingLayout& layout, const AccelBlockView& block) {
-  return LayoutMismatch(layout, block).empty();
+bool MatchesLayout(const RecordingLayout& layout, const AccelBlockView& block,
+                   std::string_view load_unit) {
+  return layout.load_unit == load_unit && LayoutMismatch(layout, block).empty();
 }
 
 bool IsRecordingDirectory(const std::filesystem::path& dir) {
@@ -277,11 +297,13 @@ Result<Recording> ReadRecording(const std::filesystem::path& dir) {
   const json* version =
       r.Get(root, "format_version", "format_version", json::value_t::number_unsigned);
   if (!r.ok()) return r.error();
-  if (version->get<long long>() != kRecordingFormatVersion) {
+  const long long format_version = version->get<long long>();
+  if (format_version < 1 || format_version > kRecordingFormatVersion) {
     return Error{mf + ": format_version " + version->dump() +
-                 " is not supported (this build reads " + std::to_string(kRecordingFormatVersion) +
-                 ")"};
+                 " is not supported (this build reads 1 to " +
+                 std::to_string(kRecordingFormatVersion) + ")"};
   }
+  const bool with_load = format_version >= 2;
   Recording rec;
   const json* machine = r.Get(root, "machine_id", "machine_id", json::value_t::string);
   const json* rate = r.Get(root, "sample_rate_hz", "sample_rate_hz", json::value_t::number_float);
@@ -301,6 +323,11 @@ Result<Recording> ReadRecording(const std::filesystem::path& dir) {
     return Error{mf + ": samples_per_channel must be >= 1, got " + length->dump()};
   }
   rec.layout.samples_per_channel = length->get<std::uint32_t>();
+  if (with_load) {
+    const json* unit = r.Get(root, "load_unit", "load_unit", json::value_t::string);
+    if (!r.ok()) return r.error();
+    rec.layout.load_unit = unit->get<std::string>();
+  }
   if (channels->empty()) return Error{mf + ": channels is empty"};
   for (std::size_t c = 0; c < channels->size(); ++c) {
     const std::string at = "channels[" + std::to_string(c) + "]";
@@ -322,12 +349,14 @@ Result<Recording> ReadRecording(const std::filesystem::path& dir) {
   const json* t0 = r.Get(*blocks, "t0_ns", "blocks.t0_ns", json::value_t::array);
   const json* speed = r.Get(*blocks, "speed_hz", "blocks.speed_hz", json::value_t::array);
   const json* source = r.Get(*blocks, "speed_source", "blocks.speed_source", json::value_t::array);
+  const json* load =
+      with_load ? r.Get(*blocks, "load", "blocks.load", json::value_t::array) : nullptr;
   if (!r.ok()) return r.error();
   const std::size_t n = count->get<std::size_t>();
   for (const auto& [name, arr] :
        {std::pair{"sequence", seq}, std::pair{"t0_ns", t0}, std::pair{"speed_hz", speed},
-        std::pair{"speed_source", source}}) {
-    if (arr->size() != n) {
+        std::pair{"speed_source", source}, std::pair{"load", load}}) {
+    if (arr && arr->size() != n) {
       return Error{mf + ": blocks." + name + " has " + std::to_string(arr->size()) +
                    " entries but blocks.count is " + std::to_string(n)};
     }
@@ -348,6 +377,12 @@ Result<Recording> ReadRecording(const std::filesystem::path& dir) {
     Result<SpeedSource> src = ParseSpeedSourceName(jsrc.get<std::string>());
     if (!src) return Error{mf + ": blocks.speed_source" + at + ": " + src.error()};
     rec.blocks[i] = {js.get<std::uint64_t>(), jt.get<std::int64_t>(), AsDouble(jv), *src};
+    if (load) {
+      const json& jl = (*load)[i];
+      if (!jl.is_number() && !jl.is_null())
+        return Error{mf + ": blocks.load" + at + " is not a number"};
+      rec.blocks[i].load = AsDouble(jl);
+    }
   }
   const auto samples_path = dir / kRecordingSamplesName;
   if (!std::filesystem::exists(samples_path)) {
@@ -426,7 +461,7 @@ Status RecordingWriter::Append(const AccelBlockView& block) {
   samples_.write(reinterpret_cast<const char*>(block.samples.data()),
                  static_cast<std::streamsize>(block.samples.size_bytes()));
   if (!samples_) return Error{(dir_ / kRecordingSamplesName).string() + ": write error"};
-  blocks_.push_back({block.sequence, block.t0_ns, block.speed_hz, block.speed_source});
+  blocks_.push_back({block.sequence, block.t0_ns, block.speed_hz, block.speed_source, block.load});
   return Status::Ok();
 }
 

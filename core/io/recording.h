@@ -1,17 +1,19 @@
 // Recording: a captured stream of AccelBlocks of one machine, on disk (docs/recording_format.md).
 //
-// A recording is a directory holding manifest.json (format "gearpath-recording", version 1: the
-// machine id, sample rate, channels, block length and, per block, sequence number, t0_ns and
-// speed) and samples.npy, float32 shaped (n_blocks, n_channels, samples_per_channel). That is
-// exactly the planar layout of an AccelBlock, block after block, so a block is one contiguous
-// slice (replay publishes it without copying) and replay reproduces every sample bit for bit;
-// a NumPy user gets the continuous signal with samples.transpose(1, 0, 2).reshape(C, -1).
-// Per-block integers (uint64 sequence, int64 t0_ns) live in the manifest as JSON integers,
-// which both nlohmann::json and Python's json hold exactly (NumPy's int64 would do too, but the
-// project's .npy layer reads no 64-bit integer dtype). Doubles are written shortest-round-trip.
+// A recording is a directory holding manifest.json (format "gearpath-recording": the machine id,
+// sample rate, channels, block length and, per block, sequence number, t0_ns and speed; version 2
+// adds the load unit and each block's load, and is written only when the blocks carry a load, so
+// that recordings without one stay readable by version-1 readers) and samples.npy, float32 shaped
+// (n_blocks, n_channels, samples_per_channel). That is exactly the planar layout of an AccelBlock,
+// block after block, so a block is one contiguous slice (replay publishes it without copying) and
+// replay reproduces every sample bit for bit; a NumPy user gets the continuous signal with
+// samples.transpose(1, 0, 2).reshape(C, -1). Per-block integers (uint64 sequence, int64 t0_ns) live
+// in the manifest as JSON integers, which both nlohmann::json and Python's json hold exactly
+// (NumPy's int64 would do too, but the project's .npy layer reads no 64-bit integer dtype). Doubles
+// are written shortest-round-trip.
 //
-// One recording = one machine and one block layout (channels, sample rate, block length);
-// `gearpath record` starts a new recording when either changes. The writer streams: it appends
+// One recording = one machine and one block layout (channels, sample rate, block length, load
+// unit); `gearpath record` starts a new recording when any of them changes. The writer streams: it appends
 // blocks to samples.npy (header rewritten with the final shape on Close) and writes the manifest
 // last, via a temporary file and rename, so a recording without a manifest is incomplete.
 #pragma once
@@ -21,6 +23,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/common/accel_block.h"
@@ -29,7 +32,8 @@
 namespace gearpath {
 
 inline constexpr char kRecordingFormatName[] = "gearpath-recording";
-inline constexpr int kRecordingFormatVersion = 1;
+// The newest version this build reads and writes; it reads every older one too.
+inline constexpr int kRecordingFormatVersion = 2;
 inline constexpr char kRecordingManifestName[] = "manifest.json";
 inline constexpr char kRecordingSamplesName[] = "samples.npy";
 
@@ -39,6 +43,9 @@ struct RecordingLayout {
   double sample_rate_hz = 0.0;
   std::vector<ChannelInfo> channels;
   std::uint32_t samples_per_channel = 0;
+  // Unit of the blocks' load (AccelBlockV2::load_unit, at most 16 characters); empty when the
+  // blocks came without one (AccelBlock), which is also every version-1 recording.
+  std::string load_unit;
 };
 
 // What differs from block to block, besides the samples.
@@ -47,6 +54,7 @@ struct RecordedBlockInfo {
   std::int64_t t0_ns = 0;
   double speed_hz = 0.0;
   SpeedSource speed_source = SpeedSource::kUnknown;
+  double load = 0.0;  // the block's load in layout.load_unit; 0 = not carried
 };
 
 struct Recording {
@@ -60,6 +68,9 @@ struct Recording {
   }
   // View of block i (valid while this Recording lives and is not modified).
   AccelBlockView block(std::size_t i) const;
+  // True when the blocks came with a load (a load unit, or any block's load not 0): replay then
+  // publishes them as AccelBlockV2, and the manifest is written as version 2.
+  bool carries_load() const;
 };
 
 // "x", "y", "z" and back; "unknown", "acquisition", "configuration", "estimated" and back.
@@ -68,10 +79,12 @@ Result<Axis> ParseAxisName(const std::string& name);
 const char* SpeedSourceName(SpeedSource source) noexcept;
 Result<SpeedSource> ParseSpeedSourceName(const std::string& name);
 
-// The layout of `block` (machine, rate, channels, length).
-RecordingLayout LayoutOf(const AccelBlockView& block);
-// True if `block` fits `layout` (same machine, rate, channels and length).
-bool MatchesLayout(const RecordingLayout& layout, const AccelBlockView& block);
+// The layout of `block` (machine, rate, channels, length), its load in `load_unit`.
+RecordingLayout LayoutOf(const AccelBlockView& block, std::string load_unit = {});
+// True if `block`, its load in `load_unit`, fits `layout` (same machine, rate, channels, length
+// and load unit).
+bool MatchesLayout(const RecordingLayout& layout, const AccelBlockView& block,
+                   std::string_view load_unit = {});
 
 // True if `dir` holds a manifest whose "format" is kRecordingFormatName.
 bool IsRecordingDirectory(const std::filesystem::path& dir);

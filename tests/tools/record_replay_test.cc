@@ -6,7 +6,9 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
+#include <type_traits>
 
 #include "core/io/npy.h"
 #include "core/io/recording.h"
@@ -97,19 +99,33 @@ class RecordReplay : public ::testing::Test {
   fs::path dir_;
 };
 
-// Publishes `blocks` from this process on the test domain, reliably, waiting for one reader.
-void PublishFromTest(const std::vector<AccelBlock>& blocks) {
+// Publishes `blocks` from this process on the test domain, reliably, waiting for one reader:
+// as AccelBlocks, or with `load_unit` as AccelBlockV2s carrying their load.
+void PublishFromTest(const std::vector<AccelBlock>& blocks,
+                     std::optional<std::string> load_unit = std::nullopt) {
   dds::Domain domain(TestDomainId(), testing::TestDomainConfig(), dds::EnvironmentConfig::kIgnore);
   dds::Participant participant(domain);
-  dds::Topic<gearpath_AccelBlock> topic(participant);
-  dds::Writer<gearpath_AccelBlock> writer(topic);
-  ASSERT_TRUE(writer.WaitForReaders(1, std::chrono::seconds(10)).ok());
-  dds::Owned<gearpath_AccelBlock> sample;
-  for (const AccelBlock& b : blocks) {
-    ASSERT_TRUE(dds::FillWireBlock(b.view(), *sample).ok());
-    ASSERT_TRUE(writer.Write(*sample).ok());
+  auto publish = [&](auto wire) {
+    using Wire = decltype(wire);
+    dds::Topic<Wire> topic(participant);
+    dds::Writer<Wire> writer(topic);
+    ASSERT_TRUE(writer.WaitForReaders(1, std::chrono::seconds(10)).ok());
+    dds::Owned<Wire> sample;
+    for (const AccelBlock& b : blocks) {
+      if constexpr (std::is_same_v<Wire, gearpath_AccelBlockV2>) {
+        ASSERT_TRUE(dds::FillWireBlock(b.view(), *load_unit, *sample).ok());
+      } else {
+        ASSERT_TRUE(dds::FillWireBlock(b.view(), *sample).ok());
+      }
+      ASSERT_TRUE(writer.Write(*sample).ok());
+    }
+    ASSERT_GE(dds_wait_for_acks(writer.handle(), DDS_SECS(10)), 0);
+  };
+  if (load_unit) {
+    publish(gearpath_AccelBlockV2{});
+  } else {
+    publish(gearpath_AccelBlock{});
   }
-  ASSERT_GE(dds_wait_for_acks(writer.handle(), DDS_SECS(10)), 0);
 }
 
 TEST_F(RecordReplay, RecordThenReplayReproducesEveryBlockBitForBit) {
@@ -155,6 +171,103 @@ TEST_F(RecordReplay, RecordThenReplayReproducesEveryBlockBitForBit) {
               ReadText(dir_ / "rec2" / m / "manifest.json"))
         << m;
   }
+}
+
+// Blocks that came with their load (AccelBlockV2) keep it through record and replay: one
+// machine sends plain AccelBlocks and then switches to AccelBlockV2 (a new part, since the
+// unit is part of the layout), the other sends AccelBlockV2 only. Replaying the recordings
+// publishes each on its own topic again, and recording that gives the same files.
+TEST_F(RecordReplay, RecordAndReplayKeepEachBlocksLoad) {
+  std::vector<AccelBlock> blocks = MakeBlocks(4);
+  std::vector<AccelBlock> plain, first_loaded, second_loaded;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    AccelBlock& b = blocks[i];
+    const bool machine1 = i % 2 == 0;
+    b.load = machine1 ? 0.0 : 1000.0 / 3.0 + static_cast<double>(i);
+    if (machine1 && i < 4) {
+      plain.push_back(b);
+    } else if (machine1) {
+      b.load = 55.5 + static_cast<double>(i);
+      second_loaded.push_back(b);
+    } else {
+      first_loaded.push_back(b);
+    }
+  }
+  ToolProcess rec1(
+      {"record", "--domain", Domain(), "--out", (dir_ / "rec1").string(), "--count", "8"}, dir_,
+      "rec1");
+  ASSERT_TRUE(rec1.WaitForStderr("subscribed", std::chrono::seconds(10))) << rec1.Err();
+  // Each call waits for its blocks to be acknowledged: machine 1's plain blocks are in the
+  // recorder before its loaded ones are written.
+  PublishFromTest(plain);
+  PublishFromTest(first_loaded, "kW");
+  PublishFromTest(second_loaded, "N m");
+  ASSERT_EQ(rec1.Wait(std::chrono::seconds(15)), 0) << rec1.Err();
+  EXPECT_NE(rec1.Err().find("gearbox-1: block 18446744073709551002 changes the layout (channels, "
+                            "rate, length or load unit); starting part 2"),
+            std::string::npos)
+      << rec1.Err();
+
+  Result<Recording> before = ReadRecording(dir_ / "rec1" / "gearbox-1");
+  Result<Recording> after = ReadRecording(dir_ / "rec1" / "gearbox-1.part2");
+  Result<Recording> other = ReadRecording(dir_ / "rec1" / "line_2_gearbox");
+  ASSERT_TRUE(before.ok()) << before.error();
+  ASSERT_TRUE(after.ok()) << after.error();
+  ASSERT_TRUE(other.ok()) << other.error();
+  EXPECT_FALSE(before->carries_load());
+  EXPECT_EQ(nlohmann::json::parse(
+                ReadText(dir_ / "rec1" / "gearbox-1" / "manifest.json"))["format_version"],
+            1);
+  ASSERT_EQ(after->block_count(), 2u);
+  EXPECT_EQ(after->layout.load_unit, "N m");
+  ASSERT_EQ(other->block_count(), 4u);
+  EXPECT_EQ(other->layout.load_unit, "kW");
+  for (std::size_t i = 0; i < 2; ++i) {
+    ExpectSameBlock(after->block(i), second_loaded[i].view());
+    EXPECT_EQ(after->blocks[i].load, second_loaded[i].load);
+  }
+  for (std::size_t i = 0; i < 4; ++i) {
+    ExpectSameBlock(other->block(i), first_loaded[i].view());
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(other->blocks[i].load),
+              std::bit_cast<std::uint64_t>(first_loaded[i].load));
+  }
+
+  ToolProcess rec2(
+      {"record", "--domain", Domain(), "--out", (dir_ / "rec2").string(), "--count", "8"}, dir_,
+      "rec2");
+  ASSERT_TRUE(rec2.WaitForStderr("subscribed", std::chrono::seconds(10))) << rec2.Err();
+  std::string out, err;
+  ASSERT_EQ(RunTool({"replay", (dir_ / "rec1").string(), "--fast", "--domain", Domain()}, dir_,
+                    "replay", &out, &err),
+            0)
+      << err;
+  EXPECT_NE(out.find("sent 8 blocks"), std::string::npos) << out;
+  ASSERT_EQ(rec2.Wait(std::chrono::seconds(15)), 0) << rec2.Err();
+  for (const char* m : {"gearbox-1", "gearbox-1.part2", "line_2_gearbox"}) {
+    EXPECT_EQ(ReadText(dir_ / "rec1" / m / "samples.npy"),
+              ReadText(dir_ / "rec2" / m / "samples.npy"))
+        << m;
+    EXPECT_EQ(ReadText(dir_ / "rec1" / m / "manifest.json"),
+              ReadText(dir_ / "rec2" / m / "manifest.json"))
+        << m;
+  }
+}
+
+// A text export has no load column: --load sends one with every block, in --load-unit.
+TEST_F(RecordReplay, ReplayGivesAContinuousInputTheLoadItIsToldOf) {
+  std::ofstream(dir_ / "export.txt") << "Sample rate: 100 Hz\nA1-X\nm/s^2\n1\n2\n3\n4\n";
+  std::string out, err;
+  ASSERT_EQ(RunTool({"replay", (dir_ / "export.txt").string(), "--block-length", "2", "--load",
+                     "72.5", "--load-unit", "%", "--write-recording", (dir_ / "rec").string()},
+                    dir_, "replay", &out, &err),
+            0)
+      << err;
+  Result<Recording> r = ReadRecording(dir_ / "rec");
+  ASSERT_TRUE(r.ok()) << r.error();
+  EXPECT_EQ(r->layout.load_unit, "%");
+  ASSERT_EQ(r->block_count(), 2u);
+  EXPECT_EQ(r->blocks[0].load, 72.5);
+  EXPECT_EQ(r->blocks[1].load, 72.5);
 }
 
 TEST_F(RecordReplay, RecordStopsCleanlyOnSigintAndKeepsWhatItGot) {

@@ -48,4 +48,18 @@ for key in ("sequence", "t0_ns", "speed_hz", "speed_source"):
 assert m["machine_id"] == "gb-numpy" and m["sample_rate_hz"] == 12800.0
 x = got.transpose(1, 0, 2).reshape(len(m["channels"]), -1)
 assert np.array_equal(x[1, s:2 * s], samples[1, 1]), "continuous view"
-print("ok: numpy-written recording read by gearpath and back, bit for bit")
+
+# Version 2: the same blocks with each one's load, as AccelBlockV2 brought them.
+src2 = os.path.join(work, "from_numpy_v2")
+os.makedirs(src2)
+np.save(os.path.join(src2, "samples.npy"), samples)
+manifest_v2 = dict(manifest, format_version=2, load_unit="kN m")
+manifest_v2["blocks"] = dict(manifest["blocks"], load=[12.5 + i / 7 for i in range(n)])
+with open(os.path.join(src2, "manifest.json"), "w") as f:
+    json.dump(manifest_v2, f)
+out2 = os.path.join(work, "copied_v2")
+subprocess.run([gearpath, "replay", src2, "--write-recording", out2, "-q"], check=True)
+m2 = json.load(open(os.path.join(out2, "manifest.json")))
+assert m2["format_version"] == 2 and m2["load_unit"] == "kN m", m2
+assert m2["blocks"]["load"] == manifest_v2["blocks"]["load"], "loads differ"
+print("ok: numpy-written recordings (versions 1 and 2) read by gearpath and back, bit for bit")

@@ -6,7 +6,7 @@
 // were measured, H_aa and H_pp symmetry), and the 2-norm condition numbers per bin of
 // (H_pa - H_aa) (what Eqs. 22/24 invert) and of the decoupled matrix (what the daemon inverts),
 // summarised as min / median / worst with the worst bin's frequency. Recordings: layout, block
-// count, duration, time span, sequence gaps, speed range, non-finite samples.
+// count, duration, time span, sequence gaps, speed range, load range, non-finite samples.
 #include <CLI/CLI.hpp>
 #include <Eigen/SVD>
 #include <algorithm>
@@ -215,6 +215,12 @@ json InspectRecording(const Recording& r, const fs::path& dir) {
     j["sequence_gaps"] = gaps;
     j["missing_blocks"] = missing;
     j["speed_hz"] = {{"min", smin}, {"max", smax}};
+    if (r.carries_load()) {
+      const auto [lo, hi] = std::minmax_element(
+          r.blocks.begin(), r.blocks.end(),
+          [](const RecordedBlockInfo& a, const RecordedBlockInfo& b) { return a.load < b.load; });
+      j["load"] = {{"min", lo->load}, {"max", hi->load}, {"unit", r.layout.load_unit}};
+    }
   }
   std::size_t non_finite = 0;
   for (float v : r.samples) non_finite += std::isfinite(v) ? 0 : 1;

@@ -1,14 +1,17 @@
-// `gearpath record`: subscribes to the AccelBlock topic and writes what arrives as recordings
-// (docs/recording_format.md), so a plant can capture a period and replay it later.
+// `gearpath record`: subscribes to the AccelBlock and AccelBlockV2 topics and writes what arrives
+// as recordings (docs/recording_format.md), so a plant can capture a period and replay it later;
+// an AccelBlockV2's load and unit are kept with its block.
 //
 // Each machine's blocks go to OUT/<machine id>/ (one recording per machine; a block whose layout
-// changes, e.g. another block length, starts OUT/<machine id>.part2/ and so on). Stops after
+// changes, e.g. another block length or load unit, starts OUT/<machine id>.part2/ and so on). Stops
+// after
 // --count blocks, after --duration seconds, or on SIGINT/SIGTERM; in every case the recordings
 // are finished (header and manifest written) before it exits. The reader is reliable keep-all
 // like the daemon's, so a publisher that waits for it (replay --fast) loses nothing.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -18,6 +21,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/io/recording.h"
@@ -70,22 +74,36 @@ int RunRecord(const RecordOptions& opt) {
   dds::Topic<gearpath_AccelBlock> topic(participant);
   dds::Reader<gearpath_AccelBlock> reader(topic);
   dds::ReadCondition condition(reader);
+  dds::Topic<gearpath_AccelBlockV2> topic_v2(participant);
+  dds::Reader<gearpath_AccelBlockV2> reader_v2(topic_v2);
+  dds::ReadCondition condition_v2(reader_v2);
   dds::WaitSet waitset(participant);
   waitset.Attach(condition, 1);
+  waitset.Attach(condition_v2, 2);
 
   g_stop.store(false);
   std::signal(SIGINT, OnStopSignal);
   std::signal(SIGTERM, OnStopSignal);
 
-  std::fprintf(stderr, "gearpath record: subscribed to %s on domain %d, recording into %s\n",
-               std::string(topic.name()).c_str(), opt.domain_id, opt.out.c_str());
+  std::fprintf(stderr, "gearpath record: subscribed to %s and %s on domain %d, recording into %s\n",
+               std::string(topic.name()).c_str(), std::string(topic_v2.name()).c_str(),
+               opt.domain_id, opt.out.c_str());
   std::fflush(stderr);
 
   std::map<std::string, MachineStream> streams;
   std::vector<dds::Owned<gearpath_AccelBlock>> samples(16);
   std::vector<dds::SampleInfo> infos(16);
+  std::vector<dds::Owned<gearpath_AccelBlockV2>> samples_v2(16);
+  std::vector<dds::SampleInfo> infos_v2(16);
   std::vector<ChannelInfo> channels;
   std::vector<dds_attach_t> triggered(2);
+  // What one wake took from both topics, in the order the blocks were written.
+  struct Taken {
+    bool with_load;
+    std::size_t index;
+    dds_time_t written;
+  };
+  std::vector<Taken> order;
   std::size_t total = 0, foreign = 0;
   int exit_code = kExitOk;
   const auto start = std::chrono::steady_clock::now();
@@ -119,33 +137,47 @@ int RunRecord(const RecordOptions& opt) {
       break;
     }
     auto taken = reader.Take(samples, infos);
-    if (!taken) {
-      std::fprintf(stderr, "gearpath record: %s\n", taken.error().c_str());
+    auto taken_v2 = taken ? reader_v2.Take(samples_v2, infos_v2) : taken;
+    if (!taken || !taken_v2) {
+      std::fprintf(stderr, "gearpath record: %s\n", (taken ? taken_v2 : taken).error().c_str());
       exit_code = kExitFailure;
       break;
     }
-    for (std::size_t i = 0; i < *taken && (opt.count == 0 || total < opt.count); ++i) {
-      if (!infos[i].valid_data) continue;
-      const AccelBlockView block = dds::ViewOfWireBlock(*samples[i], channels);
+    order.clear();
+    for (std::size_t i = 0; i < *taken; ++i) {
+      if (infos[i].valid_data) order.push_back({false, i, infos[i].source_timestamp});
+    }
+    for (std::size_t i = 0; i < *taken_v2; ++i) {
+      if (infos_v2[i].valid_data) order.push_back({true, i, infos_v2[i].source_timestamp});
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [](const Taken& a, const Taken& b) { return a.written < b.written; });
+    for (const Taken& t : order) {
+      if (opt.count != 0 && total >= opt.count) break;
+      const AccelBlockView block = t.with_load
+                                       ? dds::ViewOfWireBlock(*samples_v2[t.index], channels)
+                                       : dds::ViewOfWireBlock(*samples[t.index], channels);
+      const std::string_view load_unit =
+          t.with_load ? std::string_view(samples_v2[t.index]->load_unit) : std::string_view();
       const std::string machine(block.machine_id);
       if (!wanted.empty() && !wanted.count(machine)) {
         ++foreign;
         continue;
       }
       MachineStream& s = streams[machine];
-      if (s.writer && !MatchesLayout(s.writer->layout(), block)) {
+      if (s.writer && !MatchesLayout(s.writer->layout(), block, load_unit)) {
         if (!finish(s)) return kExitFailure;
         s.writer.reset();
         ++s.part;
         std::fprintf(stderr,
-                     "gearpath record: %s: block %llu changes the layout (channels, rate or "
-                     "length); starting part %d\n",
+                     "gearpath record: %s: block %llu changes the layout (channels, rate, "
+                     "length or load unit); starting part %d\n",
                      machine.c_str(), static_cast<unsigned long long>(block.sequence), s.part);
       }
       if (!s.writer) {
         std::string name = MachineDirectoryName(machine);
         if (s.part > 1) name += ".part" + std::to_string(s.part);
-        auto opened = RecordingWriter::Open(out / name, LayoutOf(block));
+        auto opened = RecordingWriter::Open(out / name, LayoutOf(block, std::string(load_unit)));
         if (!opened) {
           std::fprintf(stderr, "gearpath record: %s\n", opened.error().c_str());
           return kExitFailure;
@@ -200,7 +232,8 @@ void AddRecordCommand(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<RecordOptions>();
   CLI::App* cmd = app.add_subcommand(
       "record",
-      "Record AccelBlocks from DDS into recordings (docs/recording_format.md), one per "
+      "Record AccelBlocks (and AccelBlockV2s, with their load) from DDS into recordings "
+      "(docs/recording_format.md), one per "
       "machine under --out; stops after --count blocks, --duration seconds, or Ctrl-C");
   cmd->add_option("--out,-o", opt->out, "Output directory (new or empty)")->required();
   cmd->add_option("--machine", opt->machines, "Only these machine ids (repeatable; default all)");

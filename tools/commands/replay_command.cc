@@ -1,4 +1,5 @@
-// `gearpath replay`: recorded acquisitions back onto the AccelBlock topic, paced like the
+// `gearpath replay`: recorded acquisitions back onto the AccelBlock topic (AccelBlockV2 for a
+// recording whose blocks carry their load, or with --load), paced like the
 // acquisition (real time), N times faster (--speed N), or as fast as the subscribers take them
 // with nothing lost (--fast: the block topic is reliable keep-all, so the writer blocks instead
 // of dropping, and replay waits for every block to be acknowledged before it exits).
@@ -15,7 +16,9 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -104,12 +107,19 @@ int RunReplay(ReplayOptions opt) {
     return kExitOk;
   }
 
+  // Each recording goes out as it was recorded: with its load (AccelBlockV2, in its unit) or
+  // without (AccelBlock).
+  std::vector<std::optional<std::string>> load_unit_of(input.recordings.size());
+  for (std::size_t s = 0; s < input.recordings.size(); ++s) {
+    if (input.recordings[s].carries_load()) load_unit_of[s] = input.recordings[s].layout.load_unit;
+  }
   PublisherOptions po;
   po.domain_id = opt.domain_id;
   po.dds = opt.dds;
   po.speedup = opt.fast ? 0.0 : opt.speed;
   po.min_subscribers = opt.subscribers;
   po.match_timeout = std::chrono::milliseconds(static_cast<long long>(opt.wait_s * 1000));
+  po.load_unit = load_unit_of.front();  // the kind whose topic is made first
   BlockPublisher publisher(po);
 
   g_stop.store(false);
@@ -127,6 +137,7 @@ int RunReplay(ReplayOptions opt) {
     seq_span[s] = r.blocks.back().sequence - r.blocks.front().sequence + 1;
   }
 
+  std::map<std::string, bool> last_with_load;  // per machine id: its last block's kind
   Progress progress(stderr, "replay", opt.loop ? (opt.loops ? opt.loops * total : 0) : total);
   std::size_t sent = 0;
   int exit_code = kExitOk;
@@ -151,7 +162,21 @@ int RunReplay(ReplayOptions opt) {
       const auto k = static_cast<std::int64_t>(pass);
       block.t0_ns += k * t0_span[best];
       block.sequence += static_cast<std::uint64_t>(k) * seq_span[best];
-      if (Status st = publisher.Publish(block); !st) {
+      // A machine whose blocks change topic (a part with a load after one without): its
+      // earlier blocks are acknowledged before the next one goes out on the other topic, so
+      // that the subscriber cannot take them out of order.
+      const std::string& machine = input.recordings[best].layout.machine_id;
+      const bool with_load = load_unit_of[best].has_value();
+      if (auto [last, first] = last_with_load.try_emplace(machine, with_load);
+          !first && last->second != with_load) {
+        last->second = with_load;
+        if (Status st = publisher.Flush(std::chrono::milliseconds(30000)); !st) {
+          std::fprintf(stderr, "\ngearpath replay: %s\n", st.error().c_str());
+          exit_code = kExitFailure;
+          break;
+        }
+      }
+      if (Status st = publisher.Publish(block, load_unit_of[best]); !st) {
         std::fprintf(stderr, "\ngearpath replay: %s\n", st.error().c_str());
         exit_code = kExitFailure;
         break;
@@ -216,6 +241,10 @@ void AddReplayCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--shaft-speed", opt->in.shaft_speed_hz,
                   "Continuous inputs: input-shaft speed in Hz to send with every block")
       ->check(NonNegative());
+  cmd->add_option("--load", opt->in.load,
+                  "Continuous inputs: operating load to send with every block (as AccelBlockV2)")
+      ->check(NonNegative());
+  cmd->add_option("--load-unit", opt->in.load_unit, "Unit of --load (at most 16 characters)");
   AddPublishingOptions(cmd, &opt->domain_id, &opt->dds, &opt->subscribers, &opt->wait_s);
   cmd->add_option("--write-recording", opt->write_recording,
                   "Write the blocks as a recording into this directory instead of publishing");

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <type_traits>
 
 #include "idl/dds/accel_block_wire.h"
 #include "idl/dds/domain.h"
@@ -24,6 +25,7 @@ struct BlockEndpoint {
   dds::Topic<Wire> topic;
   dds::Writer<Wire> writer;
   dds::Owned<Wire> sample;
+  bool matched = false;  // the wait for the first subscribers is done
 };
 
 }  // namespace
@@ -33,20 +35,23 @@ struct BlockPublisher::Impl {
       : options(o),
         domain(o.domain_id, ToolDomainConfig(o.dds)),
         participant(domain, ToolSecurityFiles(o.dds)) {
-    if (o.load_unit.empty()) {
-      plain.emplace(participant, o.topic);
+    // The kind the options name is made now (so it is discovered early); the other one when a
+    // block first needs it, on its default topic.
+    if (o.load_unit) {
+      Endpoint(with_load);
     } else {
-      with_load.emplace(participant, o.topic);
+      Endpoint(plain);
     }
   }
 
-  // Calls f with whichever endpoint this publisher has.
-  template <typename F>
-  decltype(auto) OnEndpoint(F&& f) {
-    return with_load ? f(*with_load) : f(*plain);
-  }
-  dds_entity_t writer_handle() {
-    return OnEndpoint([](auto& e) { return e.writer.handle(); });
+  template <typename Wire>
+  BlockEndpoint<Wire>& Endpoint(std::optional<BlockEndpoint<Wire>>& e) {
+    if (!e) {
+      const bool named =
+          std::is_same_v<Wire, gearpath_AccelBlockV2> == options.load_unit.has_value();
+      e.emplace(participant, named ? options.topic : std::string());
+    }
+    return *e;
   }
 
   PublisherOptions options;
@@ -59,55 +64,41 @@ struct BlockPublisher::Impl {
   std::chrono::steady_clock::time_point first_wall;
 };
 
-BlockPublisher::BlockPublisher(const PublisherOptions& options)
-    : impl_(std::make_unique<Impl>(options)) {}
+namespace {
 
-BlockPublisher::~BlockPublisher() = default;
-
-Status BlockPublisher::Publish(const AccelBlockView& block) {
-  Impl& s = *impl_;
-  if (!s.started) {
-    if (s.options.min_subscribers > 0) {
-      // In slices, so that a stop request is seen while waiting.
-      const auto deadline = std::chrono::steady_clock::now() + s.options.match_timeout;
-      for (;;) {
-        const auto left = std::max(std::chrono::steady_clock::duration::zero(),
-                                   deadline - std::chrono::steady_clock::now());
-        Status matched = s.OnEndpoint([&](auto& e) {
-          return e.writer.WaitForReaders(static_cast<std::uint32_t>(s.options.min_subscribers),
-                                         std::min<std::chrono::steady_clock::duration>(
-                                             left, std::chrono::milliseconds(200)));
-        });
-        if (matched) break;
-        if (s.options.stop && s.options.stop->load()) {
-          return Error{"stopped while waiting for a daemon to subscribe"};
-        }
-        if (left == std::chrono::steady_clock::duration::zero()) {
-          return Error{"no daemon subscribed to the block topic: " + matched.error()};
-        }
-      }
-    }
-    s.started = true;
-    s.first_t0_ns = block.t0_ns;
-    s.first_wall = std::chrono::steady_clock::now();
-  } else if (s.options.speedup > 0) {
-    const double offset_s = static_cast<double>(block.t0_ns - s.first_t0_ns) * 1e-9;
-    std::this_thread::sleep_until(
-        s.first_wall + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                           std::chrono::duration<double>(offset_s / s.options.speedup)));
+// Waits (in slices, so that a stop request is seen) until the endpoint has its subscribers.
+template <typename Impl, typename Endpoint>
+Status WaitForSubscribers(const Impl& s, Endpoint& e) {
+  if (e.matched || s.options.min_subscribers <= 0) {
+    e.matched = true;
+    return Status::Ok();
   }
-  Status filled = s.with_load ? dds::FillWireBlock(block, s.options.load_unit, *s.with_load->sample)
-                              : dds::FillWireBlock(block, *s.plain->sample);
-  if (!filled) return Error{"block " + std::to_string(block.sequence) + ": " + filled.error()};
-  return WriteOrWait(block);
+  const auto deadline = std::chrono::steady_clock::now() + s.options.match_timeout;
+  for (;;) {
+    const auto left = std::max(std::chrono::steady_clock::duration::zero(),
+                               deadline - std::chrono::steady_clock::now());
+    Status matched = e.writer.WaitForReaders(
+        static_cast<std::uint32_t>(s.options.min_subscribers),
+        std::min<std::chrono::steady_clock::duration>(left, std::chrono::milliseconds(200)));
+    if (matched) break;
+    if (s.options.stop && s.options.stop->load()) {
+      return Error{"stopped while waiting for a daemon to subscribe"};
+    }
+    if (left == std::chrono::steady_clock::duration::zero()) {
+      return Error{"no daemon subscribed to the block topic " + std::string(e.topic.name()) + ": " +
+                   matched.error()};
+    }
+  }
+  e.matched = true;
+  return Status::Ok();
 }
 
 // The daemon may go away under us (killed, restarted, upgraded). While it is still matched but
 // no longer acknowledges, Write times out; once its lease has expired nobody is matched and a
 // write would go nowhere. Either way the block is held and retried until a subscriber takes it
 // again, for at most resume_timeout; pacing then restarts from this block (no burst).
-Status BlockPublisher::WriteOrWait(const AccelBlockView& block) {
-  Impl& s = *impl_;
+template <typename Impl, typename Endpoint>
+Status WriteOrWait(Impl& s, Endpoint& e, const AccelBlockView& block) {
   const auto give_up = std::chrono::steady_clock::now() + s.options.resume_timeout;
   bool waited = false;
   auto note = [&](const char* why) {
@@ -119,13 +110,12 @@ Status BlockPublisher::WriteOrWait(const AccelBlockView& block) {
   };
   const auto min = static_cast<std::uint32_t>(std::max(0, s.options.min_subscribers));
   for (;;) {
-    Result<std::uint32_t> matched = s.OnEndpoint([](auto& e) { return e.writer.MatchedReaders(); });
+    Result<std::uint32_t> matched = e.writer.MatchedReaders();
     if (!matched) return Error{matched.error()};
     std::string last_error;
     if (*matched < min) {
       note("no daemon subscribed any more");
-    } else if (Status written = s.OnEndpoint([](auto& e) { return e.writer.Write(*e.sample); });
-               !written) {
+    } else if (Status written = e.writer.Write(*e.sample); !written) {
       // Cyclone's "Timeout": a matched reader did not acknowledge within max_blocking_time.
       if (written.error().find("Timeout") == std::string::npos) return written;
       last_error = written.error();
@@ -136,9 +126,8 @@ Status BlockPublisher::WriteOrWait(const AccelBlockView& block) {
       // Paced (real-time or N x) streams also wait for the acknowledgement: a daemon killed
       // after matching would otherwise swallow every block until its lease expires. A block
       // written again after a crash is at worst rejected by the daemon as a duplicate.
-      const dds_return_t rc = dds_wait_for_acks(s.writer_handle(), DDS_SECS(5));
-      Result<std::uint32_t> after =
-          s.OnEndpoint([](auto& e) { return e.writer.MatchedReaders(); });
+      const dds_return_t rc = dds_wait_for_acks(e.writer.handle(), DDS_SECS(5));
+      Result<std::uint32_t> after = e.writer.MatchedReaders();
       if (rc == DDS_RETCODE_TIMEOUT) {
         note("not acknowledged within 5 s (daemon gone or stalled)");
       } else if (after && *after < min) {
@@ -167,11 +156,58 @@ Status BlockPublisher::WriteOrWait(const AccelBlockView& block) {
   return Status::Ok();
 }
 
+// Waits for the endpoint's subscribers (first use), sleeps until the block is due, fills the
+// endpoint's sample with `fill` and writes it.
+template <typename Impl, typename Endpoint, typename Fill>
+Status Send(Impl& s, Endpoint& e, const AccelBlockView& block, Fill fill) {
+  if (Status st = WaitForSubscribers(s, e); !st) return st;
+  if (!s.started) {
+    s.started = true;
+    s.first_t0_ns = block.t0_ns;
+    s.first_wall = std::chrono::steady_clock::now();
+  } else if (s.options.speedup > 0) {
+    const double offset_s = static_cast<double>(block.t0_ns - s.first_t0_ns) * 1e-9;
+    std::this_thread::sleep_until(s.first_wall +
+                                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                      std::chrono::duration<double>(offset_s / s.options.speedup)));
+  }
+  Status filled = fill(*e.sample);
+  if (!filled) return Error{"block " + std::to_string(block.sequence) + ": " + filled.error()};
+  return WriteOrWait(s, e, block);
+}
+
+}  // namespace
+
+BlockPublisher::BlockPublisher(const PublisherOptions& options)
+    : impl_(std::make_unique<Impl>(options)) {}
+
+BlockPublisher::~BlockPublisher() = default;
+
+Status BlockPublisher::Publish(const AccelBlockView& block) {
+  return Publish(block, impl_->options.load_unit);
+}
+
+Status BlockPublisher::Publish(const AccelBlockView& block,
+                               const std::optional<std::string>& load_unit) {
+  Impl& s = *impl_;
+  if (load_unit) {
+    return Send(s, s.Endpoint(s.with_load), block, [&](gearpath_AccelBlockV2& wire) {
+      return dds::FillWireBlock(block, *load_unit, wire);
+    });
+  }
+  return Send(s, s.Endpoint(s.plain), block,
+              [&](gearpath_AccelBlock& wire) { return dds::FillWireBlock(block, wire); });
+}
+
 Status BlockPublisher::Flush(std::chrono::milliseconds timeout) {
-  const dds_return_t rc =
-      dds_wait_for_acks(impl_->writer_handle(), DDS_MSECS(timeout.count()));
-  if (rc < 0) return Error{dds::DdsErrorMessage("dds_wait_for_acks", rc)};
-  return Status::Ok();
+  auto flush = [&](auto& e) -> Status {
+    if (!e) return Status::Ok();
+    const dds_return_t rc = dds_wait_for_acks(e->writer.handle(), DDS_MSECS(timeout.count()));
+    if (rc < 0) return Error{dds::DdsErrorMessage("dds_wait_for_acks", rc)};
+    return Status::Ok();
+  };
+  if (Status st = flush(impl_->plain); !st) return st;
+  return flush(impl_->with_load);
 }
 
 }  // namespace gearpath::tools

@@ -1,5 +1,6 @@
 // BlockPublisher: puts AccelBlocks on the DDS block topic, paced like the acquisition; with a
-// load unit, AccelBlockV2s carrying each block's load (contract version 4) instead.
+// load unit, AccelBlockV2s carrying each block's load (contract version 4) instead, or either
+// kind block by block.
 //
 // Shared by the tools that feed the daemon (`gearpath sim`, `gearpath replay`). Pacing follows
 // each block's t0: real time, N times faster, or as fast as the subscribers take them. The block
@@ -10,6 +11,7 @@
 #include <atomic>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/common/accel_block.h"
@@ -22,10 +24,12 @@ namespace gearpath::tools {
 struct PublisherOptions {
   int domain_id = 0;
   DdsOptions dds;           // --dds-config, --dds-security
-  std::string topic;        // empty = the default AccelBlock (or AccelBlockV2) topic name
-  // Non-empty: publish AccelBlockV2 with each block's load (AccelBlock::load) in this unit,
-  // e.g. "N m" (at most 16 characters).
-  std::string load_unit;
+  // Empty = the default topic name of the kind load_unit chooses; a block of the other kind
+  // (Publish with a load unit) always goes to its default topic.
+  std::string topic;
+  // Set: publish AccelBlockV2 with each block's load (AccelBlock::load) in this unit, e.g.
+  // "N m" (at most 16 characters; may be empty); unset: plain AccelBlock.
+  std::optional<std::string> load_unit;
   double speedup = 1.0;     // 1 = real time, N = N times faster, 0 = as fast as possible
   int min_subscribers = 1;  // wait for this many matched readers before the first block
   std::chrono::milliseconds match_timeout{10000};
@@ -51,12 +55,16 @@ class BlockPublisher : public BlockSink {
   // Waits for the subscribers (first call only), sleeps until the block is due, publishes it.
   // A subscriber that disappears later is waited for (resume_timeout), the block held.
   Status Publish(const AccelBlockView& block) override;
+  // The same, as AccelBlockV2 in `load_unit` when it is set and as AccelBlock when not,
+  // whatever the options say (replay: each recording as it was recorded). Both kinds share the
+  // pacing; each waits for its subscribers on first use.
+  Status Publish(const AccelBlockView& block, const std::optional<std::string>& load_unit);
 
-  // Blocks until every matched reader has acknowledged what was written, or the timeout.
+  // Blocks until every matched reader of both kinds has acknowledged what was written, or the
+  // timeout.
   Status Flush(std::chrono::milliseconds timeout) override;
 
  private:
-  Status WriteOrWait(const AccelBlockView& block);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

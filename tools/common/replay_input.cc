@@ -217,6 +217,7 @@ Result<Recording> BlockContinuous(const ContinuousAcquisition& acquisition,
   r.layout.sample_rate_hz = fs;
   for (std::size_t c : *kept) r.layout.channels.push_back(acq.channels[c]);
   r.layout.samples_per_channel = static_cast<std::uint32_t>(length);
+  if (options.load > 0) r.layout.load_unit = options.load_unit;
   const std::int64_t t0 = options.t0_ns != 0
                               ? options.t0_ns
                               : std::chrono::duration_cast<std::chrono::nanoseconds>(
@@ -228,7 +229,8 @@ Result<Recording> BlockContinuous(const ContinuousAcquisition& acquisition,
     const double offset_s = static_cast<double>(first - begin) / fs;
     r.blocks.push_back(
         {b, t0 + std::llround(offset_s * 1e9), options.shaft_speed_hz,
-         options.shaft_speed_hz > 0 ? SpeedSource::kConfiguration : SpeedSource::kUnknown});
+         options.shaft_speed_hz > 0 ? SpeedSource::kConfiguration : SpeedSource::kUnknown,
+         options.load});
     for (std::size_t c : *kept) {
       const auto ch = acq.channel(c).subspan(first, length);
       r.samples.insert(r.samples.end(), ch.begin(), ch.end());

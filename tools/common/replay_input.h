@@ -32,6 +32,8 @@ struct ReplayInputOptions {
   std::vector<std::string> channel_map;  // "COLUMN=SENSOR:AXIS" or "COLUMN=-" (drop)
   double sample_rate_hz = 0.0;           // text exports without a stated rate
   double shaft_speed_hz = 0.0;           // continuous inputs: input-shaft speed to send (0: none)
+  double load = 0.0;      // continuous inputs: load to send with every block (0: none)
+  std::string load_unit;  // its unit
   std::int64_t t0_ns = 0;                // continuous inputs: t0 of the first sample (0: now)
 };
 

@@ -215,5 +215,95 @@ TEST_F(RecordingTest, RejectsAnUnknownAxisNamingTheChannel) {
   EXPECT_TRUE(Contains(r.error(), "channels[1].axis"));
 }
 
+// Blocks that came with their load (AccelBlockV2): version 2 keeps the unit and every load,
+// a NaN included (stored as null, as the speed's), and the block view carries it to replay.
+TEST_F(RecordingTest, KeepsEachBlocksLoadAndItsUnitAsVersion2) {
+  Recording in = Sample();
+  in.layout.load_unit = "N m";
+  in.blocks[0].load = 1234.5678901234567;
+  in.blocks[1].load = std::numeric_limits<double>::quiet_NaN();
+  in.blocks[2].load = 0.0;
+  ASSERT_TRUE(in.carries_load());
+  ASSERT_TRUE(WriteRecording(in, dir_).ok());
+  const auto m = nlohmann::json::parse(ReadFileBytes(dir_ / "manifest.json"));
+  EXPECT_EQ(m["format_version"], 2);
+  EXPECT_EQ(m["load_unit"], "N m");
+  EXPECT_EQ(m["blocks"]["load"], nlohmann::json::parse("[1234.5678901234567, null, 0.0]"));
+  Result<Recording> out = ReadRecording(dir_);
+  ASSERT_TRUE(out.ok()) << out.error();
+  EXPECT_EQ(out->layout.load_unit, "N m");
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(out->blocks[0].load),
+            std::bit_cast<std::uint64_t>(in.blocks[0].load));
+  EXPECT_TRUE(std::isnan(out->blocks[1].load));
+  EXPECT_EQ(out->blocks[2].load, 0.0);
+  EXPECT_EQ(out->block(0).load, in.blocks[0].load);
+  EXPECT_TRUE(out->carries_load());
+}
+
+// Without a load the manifest is the version-1 one, byte for byte what earlier builds wrote, so
+// that they keep reading what this build records from plain AccelBlocks.
+TEST_F(RecordingTest, BlocksWithoutALoadStayVersion1) {
+  ASSERT_FALSE(Sample().carries_load());
+  ASSERT_TRUE(WriteRecording(Sample(), dir_).ok());
+  const auto m = nlohmann::json::parse(ReadFileBytes(dir_ / "manifest.json"));
+  EXPECT_EQ(m["format_version"], 1);
+  EXPECT_FALSE(m.contains("load_unit"));
+  EXPECT_FALSE(m["blocks"].contains("load"));
+  Result<Recording> out = ReadRecording(dir_);
+  ASSERT_TRUE(out.ok()) << out.error();
+  EXPECT_FALSE(out->carries_load());
+  EXPECT_EQ(out->block(2).load, 0.0);
+}
+
+// A load without a unit (what `gearpath evaluate` feeds) is still a load: kept, as version 2.
+TEST_F(RecordingTest, ALoadWithoutAUnitIsKept) {
+  Recording in = Sample();
+  in.blocks[1].load = 1.1;
+  ASSERT_TRUE(WriteRecording(in, dir_).ok());
+  Result<Recording> out = ReadRecording(dir_);
+  ASSERT_TRUE(out.ok()) << out.error();
+  EXPECT_EQ(out->layout.load_unit, "");
+  EXPECT_EQ(out->blocks[1].load, 1.1);
+  EXPECT_TRUE(out->carries_load());
+}
+
+TEST_F(RecordingTest, RejectsAVersion2ManifestWithABadLoadNamingTheKey) {
+  Recording in = Sample();
+  in.layout.load_unit = "kW";
+  in.blocks[0].load = 7.0;
+  ASSERT_TRUE(WriteRecording(in, dir_).ok());
+  const auto good = nlohmann::json::parse(ReadFileBytes(dir_ / "manifest.json"));
+  auto refused = [&](nlohmann::json m, const std::string& why) {
+    WriteFileBytes(dir_ / "manifest.json", m.dump());
+    Result<Recording> r = ReadRecording(dir_);
+    ASSERT_FALSE(r.ok()) << why;
+    EXPECT_TRUE(Contains(r.error(), why)) << r.error();
+  };
+  auto m = good;
+  m["blocks"]["load"][2] = "heavy";
+  refused(m, "blocks.load[2] is not a number");
+  m = good;
+  m["blocks"]["load"].erase(0);
+  refused(m, "blocks.load has 2 entries but blocks.count is 3");
+  m = good;
+  m["blocks"].erase("load");
+  refused(m, "missing key \"blocks.load\"");
+  m = good;
+  m.erase("load_unit");
+  refused(m, "missing key \"load_unit\"");
+  m = good;
+  m["format_version"] = 3;
+  refused(m, "format_version 3 is not supported (this build reads 1 to 2)");
+}
+
+TEST_F(RecordingTest, RefusesANonUtf8LoadUnitBeforeWritingAnyFile) {
+  Recording r = Sample();
+  r.layout.load_unit = "N\xB7m";  // Latin-1 middle dot
+  Status st = WriteRecording(r, dir_);
+  ASSERT_FALSE(st.ok());
+  EXPECT_TRUE(Contains(st.error(), "load_unit is not UTF-8")) << st.error();
+  EXPECT_FALSE(fs::exists(dir_));
+}
+
 }  // namespace
 }  // namespace gearpath
