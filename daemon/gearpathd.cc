@@ -782,6 +782,9 @@ void Gearpathd::Impl::HandleBlock(WorkerScratch& ws, MachineLane& lane, QueuedBl
       first_omission = c.indicators_omitted == 0;
       c.indicators_omitted += omitted.sets + omitted.values + omitted.names;
     }
+    if (r.score.not_judged != NotJudgedCause::kNone) {
+      ++c.not_judged[static_cast<std::size_t>(r.score.not_judged)];
+    }
     c.last_alpha = r.regularisation.alpha_median;
     c.last_condition = r.regularisation.condition_max;
     c.last_residual = r.regularisation.relative_residual;

@@ -89,6 +89,18 @@ void CounterFamilies(const DaemonMetrics& m, ExpositionWriter& w) {
       w.Sample("gearpath_blocks_rejected_total", {{"machine", x.id}, {"reason", reason}}, n);
     }
   }
+  w.Family("gearpath_blocks_not_judged_total",
+           "Accepted blocks that the machine, past learning, did not judge (its state held), "
+           "by cause: speed_unknown, speed_outside or load_outside the ranges its baseline "
+           "learned at (docs/diagnosis.md section 10).",
+           MetricType::kCounter);
+  for (const auto& x : m.machines) {
+    for (std::size_t i = 1; i < x.counters.not_judged.size(); ++i) {
+      w.Sample("gearpath_blocks_not_judged_total",
+               {{"machine", x.id}, {"cause", ToString(static_cast<NotJudgedCause>(i))}},
+               x.counters.not_judged[i]);
+    }
+  }
   w.Family("gearpath_blocks_lost_total",
            "Blocks missing from the machine's sequence numbers that no rejection explains "
            "(lost upstream or in transit).",

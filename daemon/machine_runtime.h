@@ -8,6 +8,7 @@
 // keeps counting across SIGHUP).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -66,6 +67,9 @@ struct MachineCounters {
   std::uint64_t rejected_in_gap = 0;  // rejected blocks numbered after the last accepted one
   std::map<std::string, std::uint64_t, std::less<>> rejected_by_reason;
   std::string last_rejection;       // "<reason>: <message>" of the last rejection
+  // Accepted blocks that a learned machine did not judge, by NotJudgedCause (index 0 unused):
+  // the speed unknown, or outside the speeds or loads the baseline learned at.
+  std::array<std::uint64_t, static_cast<std::size_t>(kLastNotJudgedCause) + 1> not_judged{};
   double last_alpha = 0.0;
   double last_condition = 0.0;
   double last_residual = 0.0;

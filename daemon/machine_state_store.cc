@@ -30,12 +30,24 @@ std::string Errno(std::string_view what, const std::string& path) {
   return fmt::format("{}: {} failed: {}", path, what, std::strerror(errno));
 }
 
+// The not-judged counts by cause name; causes with none are left out.
+json NotJudgedToJson(const MachineCounters& c) {
+  json j = json::object();
+  for (std::size_t i = 1; i < c.not_judged.size(); ++i) {
+    if (c.not_judged[i] > 0) {
+      j[std::string(ToString(static_cast<NotJudgedCause>(i)))] = c.not_judged[i];
+    }
+  }
+  return j;
+}
+
 json CountersToJson(const MachineCounters& c) {
   return json{{"received", c.received},
               {"processed", c.processed},
               {"rejected", c.rejected},
               {"lost", c.lost},
-              {"rejected_by_reason", c.rejected_by_reason}};
+              {"rejected_by_reason", c.rejected_by_reason},
+              {"not_judged", NotJudgedToJson(c)}};
 }
 
 std::uint64_t Count(const json& parent, const char* key) {
@@ -53,6 +65,15 @@ MachineCounters CountersFromJson(const json& j) {
   for (const auto& [reason, n] : j.at("rejected_by_reason").items()) {
     if (!n.is_number_unsigned()) throw std::invalid_argument("rejected_by_reason: not a count");
     c.rejected_by_reason[reason] = n.get<std::uint64_t>();
+  }
+  // Absent from a state saved before the count existed; a cause this build does not know
+  // (a later build's) is dropped.
+  if (const auto it = j.find("not_judged"); it != j.end()) {
+    if (!it->is_object()) throw std::invalid_argument("not_judged: not an object");
+    for (std::size_t i = 1; i < c.not_judged.size(); ++i) {
+      const auto cause = ToString(static_cast<NotJudgedCause>(i));
+      if (it->contains(cause)) c.not_judged[i] = Count(*it, std::string(cause).c_str());
+    }
   }
   return c;
 }

@@ -79,7 +79,7 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
     if (!(w.speed_hz > 0.0)) {
       add("input speed unknown (not in the block, not configured, no mesh lines to track): "
           "indicators not computed, state held");
-    } else if (ctx.out.score.load_outside) {
+    } else if (ctx.out.score.not_judged == NotJudgedCause::kLoadOutside) {
       add("load %.4g outside the %.4g-%.4g the healthy baseline was learned at (+/- %.2g %%): "
           "not judged, state held",
           ctx.block.load, ctx.out.score.baseline_load_lo, ctx.out.score.baseline_load_hi,

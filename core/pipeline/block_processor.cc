@@ -141,6 +141,20 @@ Status InitialiseState(const MachineContext& m, MachineState& st) {
 
 }  // namespace
 
+std::string_view ToString(NotJudgedCause cause) noexcept {
+  switch (cause) {
+    case NotJudgedCause::kNone:
+      return "none";
+    case NotJudgedCause::kSpeedUnknown:
+      return "speed_unknown";
+    case NotJudgedCause::kSpeedOutside:
+      return "speed_outside";
+    case NotJudgedCause::kLoadOutside:
+      return "load_outside";
+  }
+  return "unknown";
+}
+
 std::string_view ToString(ConditionSource source) noexcept {
   switch (source) {
     case ConditionSource::kMeasured:

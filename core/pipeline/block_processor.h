@@ -258,6 +258,18 @@ struct BlockConditionIndicators {
   double score = 0.0;              // largest directional two-block z / its limit over this set
 };
 
+// Why a machine past learning did not judge a block (it holds the state meanwhile). A plant
+// watches these: a machine that runs away from the speeds or loads it learned at is blind.
+enum class NotJudgedCause : std::uint8_t {
+  kNone,          // judged, or still learning
+  kSpeedUnknown,  // no input speed (not in the block, not configured, nothing to track)
+  kSpeedOutside,  // the speed is outside the baseline's range (speed_tolerance)
+  kLoadOutside,   // the load is outside the baseline's range (load_tolerance)
+};
+inline constexpr NotJudgedCause kLastNotJudgedCause = NotJudgedCause::kLoadOutside;
+// "speed_unknown", "speed_outside", "load_outside" ("none" for kNone).
+std::string_view ToString(NotJudgedCause cause) noexcept;
+
 // The block's anomaly score and the limits it was judged by.
 struct BlockScore {
   double limit_z = 0.0;        // z limit in force (0 while learning)
@@ -277,7 +289,7 @@ struct BlockScore {
   double baseline_speed_hi_hz = 0.0;  // learning, or unknown for a state saved before them)
   double baseline_load_lo = 0.0;      // loads the baseline was learned at (0 while learning,
   double baseline_load_hi = 0.0;      // or when a baseline block carried no load)
-  bool load_outside = false;          // not judged because of the block's load
+  NotJudgedCause not_judged = NotJudgedCause::kNone;
 };
 
 struct BlockRegularisation {

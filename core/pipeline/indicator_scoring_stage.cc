@@ -87,9 +87,12 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
   std::fill(w.slot_score.begin(), w.slot_score.end(), 0.0);
   std::fill(w.group_score.begin(), w.group_score.end(), 0.0);
   BlockScore& score = ctx.out.score;
-  const bool speed_judged = w.speed_hz > 0.0 && WithinBaselineSpeeds(ctx);
-  score.load_outside = !st.learning && speed_judged && !WithinBaselineLoads(ctx);
-  if (st.learning || !speed_judged || score.load_outside) {
+  score.not_judged = st.learning                  ? NotJudgedCause::kNone
+                     : !(w.speed_hz > 0.0)        ? NotJudgedCause::kSpeedUnknown
+                     : !WithinBaselineSpeeds(ctx) ? NotJudgedCause::kSpeedOutside
+                     : !WithinBaselineLoads(ctx)  ? NotJudgedCause::kLoadOutside
+                                                  : NotJudgedCause::kNone;
+  if (st.learning || score.not_judged != NotJudgedCause::kNone) {
     std::fill(w.z.begin(), w.z.end(), 0.0);
     std::fill(w.excess.begin(), w.excess.end(), 0.0);
     st.previous_scored = false;

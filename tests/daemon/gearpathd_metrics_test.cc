@@ -37,6 +37,7 @@ DaemonMetrics TwoMachines() {
   a.counters.rejected = 2;
   a.counters.rejected_by_reason = {{"non_finite", 2}};
   a.counters.lost = 1;
+  a.counters.not_judged[static_cast<std::size_t>(NotJudgedCause::kLoadOutside)] = 3;
   a.counters.fault_state = FaultState::kAlarm;
   a.counters.latency.Observe(0.00390625);  // exact in binary: the sum compares exactly
   a.counters.latency.Observe(0.25);        // a bound belongs to its bucket (le)
@@ -90,6 +91,14 @@ TEST(MetricsCatalogue, BlockCountersPerMachineAndEveryRejectReasonFromZero) {
   EXPECT_TRUE(Has(text, "gearpath_blocks_rejected_total{machine=\"b\",reason=\"queue_full\"} 0"));
   EXPECT_TRUE(
       Has(text, "gearpath_blocks_rejected_total{machine=\"a\",reason=\"wrong_sample_rate\"} 0"));
+  // Not judged by a learned machine, every cause from 0.
+  EXPECT_TRUE(
+      Has(text, "gearpath_blocks_not_judged_total{machine=\"a\",cause=\"load_outside\"} 3"));
+  EXPECT_TRUE(
+      Has(text, "gearpath_blocks_not_judged_total{machine=\"a\",cause=\"speed_outside\"} 0"));
+  EXPECT_TRUE(
+      Has(text, "gearpath_blocks_not_judged_total{machine=\"b\",cause=\"speed_unknown\"} 0"));
+  EXPECT_EQ(CountLinesStartingWith(text, "gearpath_blocks_not_judged_total{machine=\"b\""), 3u);
   // The 15 validation reasons and queue_full, per machine.
   EXPECT_EQ(CountLinesStartingWith(text, "gearpath_blocks_rejected_total{machine=\"a\""), 16u);
 }

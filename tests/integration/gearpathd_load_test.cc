@@ -76,8 +76,18 @@ TEST_F(GearpathdLoad, ABlockIsJudgedOnlyWithinTheLearnedLoadsAndTheRangeSurvives
   ASSERT_TRUE(plain.has_value());
   EXPECT_TRUE(std::string_view((*plain)->reason).starts_with(kJudged)) << (*plain)->reason;
 
-  // The learned range is part of the saved state.
+  // The learned range is part of the saved state, and so is the count of blocks not judged
+  // for their load, which a plant watches (gearpath_blocks_not_judged_total).
   RestartDaemon(SIGTERM);
+  bool counted = false;
+  for (const auto& entry : std::filesystem::directory_iterator(dir_ / "state")) {
+    if (!entry.path().string().ends_with(".state.json")) continue;
+    std::ifstream in(entry.path());
+    const json saved = json::parse(in);
+    EXPECT_EQ(saved["counters"]["not_judged"], json::parse(R"({"load_outside": 1})")) << saved;
+    counted = true;
+  }
+  EXPECT_TRUE(counted) << "no state file in " << (dir_ / "state");
   auto after = Judge(healthy, 150.0);
   ASSERT_TRUE(after.has_value()) << daemon_->Log();
   EXPECT_EQ(std::string_view((*after)->reason), kOutside) << daemon_->Log();

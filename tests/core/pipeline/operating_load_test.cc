@@ -44,12 +44,13 @@ TEST(OperatingLoadTest, ABlockIsJudgedOnlyWithinTheLearnedLoadsWidenedByTheToler
   for (const double load : {86.0, 100.0, 115.0}) {
     const BlockResult r = RunBlocks(p, healthy, 1, seq, load);
     EXPECT_TRUE(r.score.judged) << load << ": " << r.verdict.reason.view();
+    EXPECT_EQ(r.score.not_judged, NotJudgedCause::kNone) << load;
     EXPECT_EQ(r.verdict.state, FaultState::kNoFault) << r.verdict.reason.view();
   }
   for (const double load : {85.0, 116.0, 200.0}) {
     const BlockResult r = RunBlocks(p, healthy, 1, seq, load);
     EXPECT_FALSE(r.score.judged) << load;
-    EXPECT_TRUE(r.score.load_outside) << load;
+    EXPECT_EQ(r.score.not_judged, NotJudgedCause::kLoadOutside) << load;
     EXPECT_EQ(r.verdict.state, FaultState::kNoFault);  // held
     EXPECT_EQ(r.verdict.confidence, 0.0);
     EXPECT_DOUBLE_EQ(r.score.baseline_load_lo, 95.0);

@@ -53,6 +53,7 @@ TEST(OperatingSpeedTest, AHealthyMachineAtASpeedItDidNotLearnIsNotJudged) {
   for (int i = 0; i < 4; ++i) {
     const BlockResult r = RunBlocks(p, faster, 1, seq);
     EXPECT_FALSE(r.score.judged);
+    EXPECT_EQ(r.score.not_judged, NotJudgedCause::kSpeedOutside);
     EXPECT_EQ(r.verdict.state, FaultState::kNoFault) << r.verdict.reason.view();
     EXPECT_EQ(r.verdict.confidence, 0.0);
     EXPECT_TRUE(Contains(r.verdict.reason.view(), "outside")) << r.verdict.reason.view();
