@@ -96,6 +96,31 @@ class RecordReplay : public ::testing::Test {
 
   std::string Domain() const { return std::to_string(TestDomainId()); }
 
+  // Replays the recordings under rec1 (`blocks` in all) while recording them into rec2, and
+  // expects the same files in each of `recordings`: what replay sends is what was recorded.
+  void ExpectReplayRecordsTheSame(std::initializer_list<const char*> recordings,
+                                  std::size_t blocks) {
+    ToolProcess rec2({"record", "--domain", Domain(), "--out", (dir_ / "rec2").string(), "--count",
+                      std::to_string(blocks)},
+                     dir_, "rec2");
+    ASSERT_TRUE(rec2.WaitForStderr("subscribed", std::chrono::seconds(10))) << rec2.Err();
+    std::string out, err;
+    ASSERT_EQ(RunTool({"replay", (dir_ / "rec1").string(), "--fast", "--domain", Domain()}, dir_,
+                      "replay", &out, &err),
+              0)
+        << err;
+    EXPECT_NE(out.find("sent " + std::to_string(blocks) + " blocks"), std::string::npos) << out;
+    ASSERT_EQ(rec2.Wait(std::chrono::seconds(15)), 0) << rec2.Err();
+    for (const char* m : recordings) {
+      EXPECT_EQ(ReadText(dir_ / "rec1" / m / "samples.npy"),
+                ReadText(dir_ / "rec2" / m / "samples.npy"))
+          << m;
+      EXPECT_EQ(ReadText(dir_ / "rec1" / m / "manifest.json"),
+                ReadText(dir_ / "rec2" / m / "manifest.json"))
+          << m;
+    }
+  }
+
   fs::path dir_;
 };
 
@@ -152,25 +177,7 @@ TEST_F(RecordReplay, RecordThenReplayReproducesEveryBlockBitForBit) {
   }
 
   // 2. Replay the recording (both machines) and record it again: same bytes on disk.
-  ToolProcess rec2(
-      {"record", "--domain", Domain(), "--out", (dir_ / "rec2").string(), "--count", "10"}, dir_,
-      "rec2");
-  ASSERT_TRUE(rec2.WaitForStderr("subscribed", std::chrono::seconds(10))) << rec2.Err();
-  std::string out, err;
-  ASSERT_EQ(RunTool({"replay", (dir_ / "rec1").string(), "--fast", "--domain", Domain()}, dir_,
-                    "replay", &out, &err),
-            0)
-      << err;
-  EXPECT_NE(out.find("sent 10 blocks"), std::string::npos) << out;
-  ASSERT_EQ(rec2.Wait(std::chrono::seconds(15)), 0) << rec2.Err();
-  for (const char* m : {"gearbox-1", "line_2_gearbox"}) {
-    EXPECT_EQ(ReadText(dir_ / "rec1" / m / "samples.npy"),
-              ReadText(dir_ / "rec2" / m / "samples.npy"))
-        << m;
-    EXPECT_EQ(ReadText(dir_ / "rec1" / m / "manifest.json"),
-              ReadText(dir_ / "rec2" / m / "manifest.json"))
-        << m;
-  }
+  ExpectReplayRecordsTheSame({"gearbox-1", "line_2_gearbox"}, 10);
 }
 
 // Blocks that came with their load (AccelBlockV2) keep it through record and replay: one
@@ -232,25 +239,7 @@ TEST_F(RecordReplay, RecordAndReplayKeepEachBlocksLoad) {
               std::bit_cast<std::uint64_t>(first_loaded[i].load));
   }
 
-  ToolProcess rec2(
-      {"record", "--domain", Domain(), "--out", (dir_ / "rec2").string(), "--count", "8"}, dir_,
-      "rec2");
-  ASSERT_TRUE(rec2.WaitForStderr("subscribed", std::chrono::seconds(10))) << rec2.Err();
-  std::string out, err;
-  ASSERT_EQ(RunTool({"replay", (dir_ / "rec1").string(), "--fast", "--domain", Domain()}, dir_,
-                    "replay", &out, &err),
-            0)
-      << err;
-  EXPECT_NE(out.find("sent 8 blocks"), std::string::npos) << out;
-  ASSERT_EQ(rec2.Wait(std::chrono::seconds(15)), 0) << rec2.Err();
-  for (const char* m : {"gearbox-1", "gearbox-1.part2", "line_2_gearbox"}) {
-    EXPECT_EQ(ReadText(dir_ / "rec1" / m / "samples.npy"),
-              ReadText(dir_ / "rec2" / m / "samples.npy"))
-        << m;
-    EXPECT_EQ(ReadText(dir_ / "rec1" / m / "manifest.json"),
-              ReadText(dir_ / "rec2" / m / "manifest.json"))
-        << m;
-  }
+  ExpectReplayRecordsTheSame({"gearbox-1", "gearbox-1.part2", "line_2_gearbox"}, 8);
 }
 
 // A text export has no load column: --load sends one with every block, in --load-unit.
