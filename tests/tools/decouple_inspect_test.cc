@@ -324,6 +324,23 @@ TEST_F(DecoupleInspect, InspectDescribesARecordingWithItsSequenceGaps) {
   EXPECT_EQ(j["sequence_gaps"], 1);
   EXPECT_EQ(j["missing_blocks"], 2);
   EXPECT_EQ(j["checks"]["non_finite_samples"], 1);
+  EXPECT_FALSE(j.contains("load"));  // plain AccelBlocks: no load to show
+}
+
+TEST_F(DecoupleInspect, InspectShowsTheLoadRangeOfARecordingThatCarriesIt) {
+  Recording r;
+  r.layout = {"gb", 1000.0, {{"A1", Axis::kX, "m/s^2", 0.0}}, 10, "kW"};
+  for (const double load : {55.0, 72.5, 61.0}) {
+    r.blocks.push_back({r.blocks.size(), static_cast<std::int64_t>(r.blocks.size()) * 10000000,
+                        20.0, SpeedSource::kAcquisition, load});
+  }
+  r.samples.assign(30, 0.25f);
+  ASSERT_TRUE(WriteRecording(r, dir_ / "rec").ok());
+  std::string out, err;
+  ASSERT_EQ(RunTool({"inspect", (dir_ / "rec").string(), "--json"}, dir_, "inspect", &out, &err), 0)
+      << err;
+  const auto j = nlohmann::json::parse(out);
+  EXPECT_EQ(j["load"], nlohmann::json::parse(R"({"min": 55.0, "max": 72.5, "unit": "kW"})")) << j;
 }
 
 TEST_F(DecoupleInspect, InspectRejectsMissingAndUnknownInputs) {
