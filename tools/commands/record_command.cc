@@ -3,10 +3,9 @@
 // an AccelBlockV2's load and unit are kept with its block.
 //
 // Each machine's blocks go to OUT/<machine id>/ (one recording per machine; a block whose layout
-// changes, e.g. another block length or load unit, starts OUT/<machine id>.part2/ and so on). Stops
-// after
-// --count blocks, after --duration seconds, or on SIGINT/SIGTERM; in every case the recordings
-// are finished (header and manifest written) before it exits. The reader is reliable keep-all
+// changes, e.g. another block length or load unit, starts OUT/<machine id>.part2/ and so on).
+// Stops after --count blocks, after --duration seconds, or on SIGINT/SIGTERM; in every case the
+// recordings are finished (header and manifest written) before it exits. The reader is reliable keep-all
 // like the daemon's, so a publisher that waits for it (replay --fast) loses nothing.
 #include <unistd.h>
 
