@@ -45,7 +45,7 @@ struct RecordingLayout {
   std::uint32_t samples_per_channel = 0;
   // Unit of the blocks' load (AccelBlockV2::load_unit, at most 16 characters); empty when the
   // blocks came without one (AccelBlock), which is also every version-1 recording.
-  std::string load_unit;
+  std::string load_unit{};
 };
 
 // What differs from block to block, besides the samples.
