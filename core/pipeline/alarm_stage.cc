@@ -76,19 +76,24 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
     if (n > 0) pos = std::min(sizeof buf - 1, pos + static_cast<std::size_t>(n));
   };
   if (!judged) {
-    if (!(w.speed_hz > 0.0)) {
-      add("input speed unknown (not in the block, not configured, no mesh lines to track): "
-          "indicators not computed, state held");
-    } else if (ctx.out.score.not_judged == NotJudgedCause::kLoadOutside) {
-      add("load %.4g outside the %.4g-%.4g the healthy baseline was learned at (+/- %.2g %%): "
-          "not judged, state held",
-          ctx.block.load, ctx.out.score.baseline_load_lo, ctx.out.score.baseline_load_hi,
-          100.0 * m.setup.options.load_tolerance);
-    } else {
-      add("input speed %.4g Hz outside the %.4g-%.4g Hz the healthy baseline was learned at "
-          "(+/- %.2g %%): not judged, state held",
-          w.speed_hz, ctx.out.score.baseline_speed_lo_hz, ctx.out.score.baseline_speed_hi_hz,
-          100.0 * m.setup.options.speed_tolerance);
+    switch (ctx.out.score.not_judged) {
+      case NotJudgedCause::kSpeedOutside:
+        add("input speed %.4g Hz outside the %.4g-%.4g Hz the healthy baseline was learned at "
+            "(+/- %.2g %%): not judged, state held",
+            w.speed_hz, ctx.out.score.baseline_speed_lo_hz, ctx.out.score.baseline_speed_hi_hz,
+            100.0 * m.setup.options.speed_tolerance);
+        break;
+      case NotJudgedCause::kLoadOutside:
+        add("load %.4g outside the %.4g-%.4g the healthy baseline was learned at (+/- %.2g %%): "
+            "not judged, state held",
+            ctx.block.load, ctx.out.score.baseline_load_lo, ctx.out.score.baseline_load_hi,
+            100.0 * m.setup.options.load_tolerance);
+        break;
+      case NotJudgedCause::kSpeedUnknown:
+      case NotJudgedCause::kNone:  // not reached: a learned machine's unjudged block has a cause
+        add("input speed unknown (not in the block, not configured, no mesh lines to track): "
+            "indicators not computed, state held");
+        break;
     }
     // No fault, or no verdict yet (learned, but no block judged since).
     if (a.state == FaultState::kNoFault || a.state == FaultState::kLearning) {
