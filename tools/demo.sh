@@ -10,24 +10,59 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${BUILD_DIR:-$root/build}
-bash "$root/tools/build.sh"
 
 healthy=20
 faulty=20
+# The demo's own fault, speed and noise, each unless the caller names that option: `gearpath
+# sim` takes an option once, so `--fault chipped` on top of the default `--fault fracture` was
+# refused and the monitor then waited for verdicts that never came.
+defaults=(--fault fracture --gear G1 --noise 0.05 --speed 4)
+given() {
+  local option=$1 arg
+  shift
+  for arg in "$@"; do
+    [[ $arg == "$option" || $arg == "$option="* ]] && return 0
+  done
+  return 1
+}
+for option in --healthy-blocks --blocks --publish; do
+  if given "$option" "$@"; then
+    echo "demo.sh: $option is the demo's own ($healthy healthy then $faulty faulty blocks," \
+      "published); run \`gearpath sim\` directly to change it" >&2
+    exit 2
+  fi
+done
+sim_args=(--publish --healthy-blocks "$healthy" --blocks $((healthy + faulty)))
+for ((i = 0; i < ${#defaults[@]}; i += 2)); do
+  given "${defaults[i]}" "$@" || sim_args+=("${defaults[i]}" "${defaults[i + 1]}")
+done
+sim_args+=("$@")
+monitor_args=(monitor --count $((healthy + faulty)) --timeout 180)
+if [[ ${GEARPATH_DEMO_DRY_RUN:-} == 1 ]]; then  # what would run, one argument a line (tests/tools)
+  printf 'monitor\n'
+  printf '%s\n' "${monitor_args[@]:1}"
+  printf 'sim\n'
+  printf '%s\n' "${sim_args[@]}"
+  exit 0
+fi
+
+bash "$root/tools/build.sh"
 log=$(mktemp -d)
 "$build/daemon/gearpathd" --log-level warn 2>"$log/gearpathd.log" &
 daemon=$!
+monitor=
 cleanup() {
+  [[ -n $monitor ]] && kill -TERM "$monitor" 2>/dev/null || true
   kill -TERM "$daemon" 2>/dev/null || true
-  wait "$daemon" 2>/dev/null || true
+  wait 2>/dev/null || true
 }
 trap cleanup EXIT
 
-"$build/tools/gearpath" monitor --count $((healthy + faulty)) --timeout 180 &
+"$build/tools/gearpath" "${monitor_args[@]}" &
 monitor=$!
-"$build/tools/gearpath" sim --publish --healthy-blocks $healthy --blocks $((healthy + faulty)) \
-  --fault fracture --gear G1 --noise 0.05 --speed 4 "$@" >"$log/sim.log"
+"$build/tools/gearpath" sim "${sim_args[@]}" >"$log/sim.log"
 wait "$monitor"
+monitor=
 echo
 echo "simulated gearbox:"
 sed 's/^/  /' "$log/sim.log"
