@@ -341,9 +341,19 @@ void Gearpathd::Impl::Resume(MachineLane& lane, MachineSet& previous) {
   if (auto old = previous.machines.find(m.id); old != previous.machines.end()) {
     Status st = m.processor.ImportLearnedState(old->second->processor.ExportLearnedState());
     if (!st) {
-      spdlog::warn("{}: the reloaded configuration changes what the baseline measures ({}); "
-                   "learning a new baseline",
-                   m.id, st.error());
+      const std::string& was = old->second->processor.setup().options.baseline_epoch;
+      const std::string& now = m.processor.setup().options.baseline_epoch;
+      if (was != now) {
+        spdlog::warn(
+            "{}: baseline epoch \"{}\" -> \"{}\": forgetting the healthy baseline and "
+            "its alarm state, learning a new baseline",
+            m.id, was, now);
+      } else {
+        spdlog::warn(
+            "{}: the reloaded configuration changes what the baseline measures ({}); "
+            "learning a new baseline",
+            m.id, st.error());
+      }
       lane.mark = SaveMark{FaultState::kLearning, true, Clock::now(), false};
       lane.counters.fault_state = FaultState::kLearning;
     }

@@ -402,6 +402,12 @@ ParamSpec AnalysisSection() {
                       "a healthy machine learned at one load exceeds its limits 20 % above it). "
                       "1 judges every load; blocks without a load are always judged.",
                       0.0, 1.0, 0.1),
+               String("epoch",
+                      "A label of the healthy baseline, e.g. the date of the last "
+                      "maintenance. Changing it and reloading (SIGHUP) makes this machine "
+                      "forget its baseline and learn a new one from its next blocks; the other "
+                      "machines keep theirs. Empty: no label (states saved before it are kept).",
+                      "", 0, 64),
                Number("k_sigma",
                       "Published envelope-indicator thresholds = mean + k_sigma x standard "
                       "deviation.",

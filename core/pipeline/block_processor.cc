@@ -542,10 +542,11 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
   const Impl& im = *impl_;
   const MachineState& now = im.state;
   if (s.fingerprint != im.fingerprint) {
-    return Error{fmt::format("the saved baseline measured something else (fingerprint {:016x}, "
-                             "this configuration {:016x}: FRF set, channels, gear train or "
-                             "indicator options changed)",
-                             s.fingerprint, im.fingerprint)};
+    return Error{
+        fmt::format("the saved baseline measured something else (fingerprint {:016x}, "
+                    "this configuration {:016x}: FRF set, channels, gear train, "
+                    "indicator options or baseline epoch changed)",
+                    s.fingerprint, im.fingerprint)};
   }
   auto size_check = [](const char* what, std::size_t want, std::size_t got) -> Status {
     if (want == got) return Status::Ok();

@@ -68,6 +68,8 @@ inline constexpr std::size_t kMaxShapes = 4;
 class SharedFrfOperators;  // core/pipeline/shared_frf_operators.h
 class BlockScratch;        // core/pipeline/block_scratch.h
 
+inline constexpr std::size_t kMaxBaselineEpochBytes = 64;
+
 struct AnalysisOptions {
   // --- Bearing-force identification (core/inverse): method (MWI default, Tikhonov, least
   // squares), regularisation rule (default: noise floor, eta = 1e-3, fixed per FRF set so the
@@ -174,6 +176,11 @@ struct AnalysisOptions {
   // them (`gearpath evaluate --match /none/ --load-step L --no-load-reading`); the default is
   // the largest step that raised none. 1 judges every load. Blocks without a load are judged.
   double load_tolerance = 0.1;
+  // A label of the healthy baseline (baseline.epoch): part of the learned state's fingerprint
+  // when not empty, so that changing it (after maintenance: a gear replaced) makes this machine
+  // refuse the baseline it has and learn a new one, on a reload as at a start, while every other
+  // machine keeps its own. Empty adds nothing to the fingerprint: states saved before it exist.
+  std::string baseline_epoch;  // printable, at most kMaxBaselineEpochBytes
   // Persistence (k of the last n blocks), hysteresis and clear delay (core/diagnosis/
   // alarm_model.h): suspected after suspect_k exceedances, alarm after alarm_k, cleared after
   // clear_blocks blocks under clear_level x the limit.

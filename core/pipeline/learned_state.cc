@@ -108,6 +108,11 @@ std::uint64_t LearnedStateFingerprint(const MachineContext& m) {
   h.Number(o.baseline_k_sigma);
   h.Number(o.scale_floor);
   h.Number(o.tail_guard ? 1 : 0);
+  // Only when set: a state saved without an epoch measured the same.
+  if (!o.baseline_epoch.empty()) {
+    h.Text("baseline epoch");
+    h.Text(o.baseline_epoch);
+  }
   return h.value();
 }
 

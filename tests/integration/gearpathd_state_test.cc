@@ -97,5 +97,49 @@ TEST_F(GearpathdState, AReloadKeepsTheBaselineUnlessItChangesWhatItMeasures) {
       << daemon_->Log();
 }
 
+// After maintenance the plant changes the machine's baseline.epoch and reloads: the alarm and
+// the baseline of the broken gearbox go, the repaired one is learned, and what it learned
+// survives a restart under the new epoch.
+TEST_F(GearpathdState, ANewEpochOnReloadForgetsTheBaselineAndTheNewOneSurvivesARestart) {
+  LearnHealthy();
+  GearboxSimulator broken = Table1Simulator(FaultType::kToothFracture, "G1", 21);
+  bool alarmed = false;
+  for (int i = 0; i < 8 && !alarmed; ++i) {
+    auto v = Judge(broken);
+    ASSERT_TRUE(v.has_value()) << "no verdict on faulty block " << i;
+    alarmed = (*v)->state == gearpath_ALARM;
+  }
+  ASSERT_TRUE(alarmed) << "the fracture never raised an alarm before the repair";
+
+  const std::string epoch = "2026-11-29 G1 replaced";
+  config_["machines"][0]["analysis"]["baseline"]["epoch"] = epoch;
+  WriteConfig(config_);
+  daemon_->Signal(SIGHUP);
+  GearboxSimulator repaired = Table1Simulator(FaultType::kNone, "", 77);
+  const auto deadline = std::chrono::steady_clock::now() + 60s;
+  int learning = 0;
+  for (;;) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << daemon_->Log();
+    auto v = Judge(repaired);
+    ASSERT_TRUE(v.has_value()) << daemon_->Log();
+    if ((*v)->state == gearpath_LEARNING) {
+      ++learning;
+    } else if (learning > 0) {  // learned again: the repaired gearbox is healthy
+      EXPECT_EQ((*v)->state, gearpath_NO_FAULT) << (*v)->reason;
+      break;
+    }  // else the reload has not taken effect yet: the old baseline judges (under load, long
+       // enough for the repaired gearbox to clear the alarm)
+  }
+  EXPECT_EQ(learning, kBaselineBlocks);
+  EXPECT_NE(daemon_->Log().find("baseline epoch \"\" -> \"" + epoch + "\""), std::string::npos)
+      << daemon_->Log();
+
+  RestartDaemon(SIGTERM);
+  auto resumed = Judge(repaired);
+  ASSERT_TRUE(resumed.has_value()) << daemon_->Log();
+  EXPECT_EQ((*resumed)->state, gearpath_NO_FAULT) << (*resumed)->reason << "\n" << daemon_->Log();
+  EXPECT_NE(daemon_->Log().find("resumed from"), std::string::npos) << daemon_->Log();
+}
+
 }  // namespace
 }  // namespace gearpath::testing
