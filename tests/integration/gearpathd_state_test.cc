@@ -36,19 +36,23 @@ class GearpathdState : public GearpathdOverDds {
     }
   }
 
+  // Feeds the faulty gearbox until the daemon alarms (at most 8 blocks).
+  void AlarmOn(GearboxSimulator& broken) {
+    for (int i = 0; i < 8; ++i) {
+      auto v = Judge(broken);
+      ASSERT_TRUE(v.has_value()) << "no verdict on faulty block " << i;
+      if ((*v)->state == gearpath_ALARM) return;
+    }
+    FAIL() << "the fault never raised an alarm";
+  }
+
   std::uint64_t sequence_ = 1;
 };
 
 TEST_F(GearpathdState, AfterAKillWithAFractureThePresentAlarmIsResumedNotRelearned) {
   LearnHealthy();
   GearboxSimulator broken = Table1Simulator(FaultType::kToothFracture, "G1", 21);
-  bool alarmed = false;
-  for (int i = 0; i < 8 && !alarmed; ++i) {
-    auto v = Judge(broken);
-    ASSERT_TRUE(v.has_value()) << "no verdict on faulty block " << i;
-    alarmed = (*v)->state == gearpath_ALARM;
-  }
-  ASSERT_TRUE(alarmed) << "the fracture never raised an alarm before the restart";
+  ASSERT_NO_FATAL_FAILURE(AlarmOn(broken));
 
   RestartDaemon(SIGKILL);
   // The very first verdict of the new daemon, on the still-fractured gearbox.
@@ -103,13 +107,7 @@ TEST_F(GearpathdState, AReloadKeepsTheBaselineUnlessItChangesWhatItMeasures) {
 TEST_F(GearpathdState, ANewEpochOnReloadForgetsTheBaselineAndTheNewOneSurvivesARestart) {
   LearnHealthy();
   GearboxSimulator broken = Table1Simulator(FaultType::kToothFracture, "G1", 21);
-  bool alarmed = false;
-  for (int i = 0; i < 8 && !alarmed; ++i) {
-    auto v = Judge(broken);
-    ASSERT_TRUE(v.has_value()) << "no verdict on faulty block " << i;
-    alarmed = (*v)->state == gearpath_ALARM;
-  }
-  ASSERT_TRUE(alarmed) << "the fracture never raised an alarm before the repair";
+  ASSERT_NO_FATAL_FAILURE(AlarmOn(broken));
 
   const std::string epoch = "2026-11-29 G1 replaced";
   config_["machines"][0]["analysis"]["baseline"]["epoch"] = epoch;
