@@ -179,7 +179,7 @@ struct AnalysisOptions {
   // A label of the healthy baseline (baseline.epoch): part of the learned state's fingerprint
   // when not empty, so that changing it (after maintenance: a gear replaced) makes this machine
   // refuse the baseline it has and learn a new one, on a reload as at a start, while every other
-  // machine keeps its own. Empty adds nothing to the fingerprint: states saved before it exist.
+  // machine keeps its own. Empty adds nothing, so states saved before the key existed stay valid.
   std::string baseline_epoch;  // printable, at most kMaxBaselineEpochBytes
   // Persistence (k of the last n blocks), hysteresis and clear delay (core/diagnosis/
   // alarm_model.h): suspected after suspect_k exceedances, alarm after alarm_k, cleared after
