@@ -1024,6 +1024,9 @@ DaemonMetrics Gearpathd::Impl::CollectMetrics() {
     if (it == lanes.end()) continue;
     MachineMetrics& machine = m.machines.emplace_back();
     machine.id = id;
+    if (const MachineRuntime* r = it->second->runtime; r != nullptr) {
+      machine.baseline_epoch = r->processor.setup().options.baseline_epoch;
+    }
     std::lock_guard lock(it->second->counters_mutex);
     machine.counters = it->second->counters;
   }

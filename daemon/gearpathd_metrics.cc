@@ -129,6 +129,14 @@ void StateFamilies(const DaemonMetrics& m, ExpositionWriter& w) {
                x.counters.fault_state == s ? 1.0 : 0.0);
     }
   }
+  w.Family("gearpath_machine_baseline_epoch",
+           "The machine's analysis.baseline.epoch in force (empty when none is set); the "
+           "value is always 1. A new epoch on a reload makes the machine learn a new baseline.",
+           MetricType::kGauge);
+  for (const auto& x : m.machines) {
+    w.Sample("gearpath_machine_baseline_epoch", {{"machine", x.id}, {"epoch", x.baseline_epoch}},
+             1.0);
+  }
   w.Family("gearpath_machine_last_block_sequence",
            "Sequence number of the machine's last accepted block.", MetricType::kGauge);
   for (const auto& x : m.machines) {

@@ -18,6 +18,7 @@ namespace gearpath::daemon {
 
 struct MachineMetrics {
   std::string id;
+  std::string baseline_epoch;  // analysis.baseline.epoch in force ("" when none is set)
   MachineCounters counters;
 };
 

@@ -32,6 +32,7 @@ DaemonMetrics TwoMachines() {
   m.foreign_blocks = 4;
   MachineMetrics a;
   a.id = "a";
+  a.baseline_epoch = "2026-11-29 \"G1\" replaced";  // a quote, escaped in the label
   a.counters.received = 7;
   a.counters.processed = 5;
   a.counters.rejected = 2;
@@ -127,6 +128,16 @@ TEST(MetricsCatalogue, MachineStateIsOneHotOverTheFourVerdictStates) {
   EXPECT_TRUE(Has(text, "gearpath_machine_state{machine=\"a\",state=\"alarm\"} 1"));
   EXPECT_TRUE(Has(text, "gearpath_machine_state{machine=\"b\",state=\"learning\"} 1"));
   EXPECT_EQ(CountLinesStartingWith(text, "gearpath_machine_state{"), 8u);
+}
+
+TEST(MetricsCatalogue, BaselineEpochOfEveryMachineEvenWithoutOne) {
+  const std::string text = RenderMetrics(TwoMachines());
+  EXPECT_TRUE(Has(text,
+                  "gearpath_machine_baseline_epoch{machine=\"a\",epoch=\"2026-11-29 "
+                  "\\\"G1\\\" replaced\"} 1"))
+      << text;
+  EXPECT_TRUE(Has(text, "gearpath_machine_baseline_epoch{machine=\"b\",epoch=\"\"} 1")) << text;
+  EXPECT_EQ(CountLinesStartingWith(text, "gearpath_machine_baseline_epoch{"), 2u);
 }
 
 TEST(MetricsCatalogue, IndicatorSeriesOnlyForMachinesWithAnAcceptedBlock) {

@@ -73,6 +73,7 @@ class GearpathdMetrics : public GearpathdOverDds {
     config["metrics"] = {{"enabled", true}, {"address", "127.0.0.1"}, {"port", 0}};
     json second = config["machines"][0];
     second["id"] = SecondMachine();
+    second["analysis"]["baseline"]["epoch"] = "after the 2026-11 overhaul";
     config["machines"].push_back(second);
   }
 
@@ -172,6 +173,11 @@ TEST_F(GearpathdMetrics, ScrapeShowsTheCountersStatusReportsAndEveryStateSeries)
     EXPECT_EQ(SampleValue(text, "gearpath_machine_speed_hz{machine=\"" + machine + "\"}"),
               10.0);
   }
+  EXPECT_EQ(SampleValue(text, "gearpath_machine_baseline_epoch{machine=\"" + a + "\",epoch=\"\"}"),
+            1.0);
+  EXPECT_EQ(SampleValue(text, "gearpath_machine_baseline_epoch{machine=\"" + b +
+                                  "\",epoch=\"after the 2026-11 overhaul\"}"),
+            1.0);
   EXPECT_EQ(SampleValue(text, "gearpath_daemon_state{state=\"running\"}"), 1.0);
   EXPECT_EQ(SampleValue(text, "gearpath_machines"), 2.0);
   EXPECT_NE(text.find("gearpath_build_info{version=\""), std::string::npos);
