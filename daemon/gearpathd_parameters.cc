@@ -1,5 +1,6 @@
 // The declaration of every gearpathd configuration parameter (see config_schema.h). This is the
 // single source of truth: validation, defaults and docs/configuration.md all come from here.
+#include "core/pipeline/block_processor.h"  // kMaxBaselineEpochBytes
 #include "daemon/config_schema.h"
 
 namespace gearpath::daemon {
@@ -407,7 +408,7 @@ ParamSpec AnalysisSection() {
                       "maintenance. Changing it and reloading (SIGHUP) makes this machine "
                       "forget its baseline and learn a new one from its next blocks; the other "
                       "machines keep theirs. Empty: no label (states saved before it are kept).",
-                      "", 0, 64),
+                      "", 0, kMaxBaselineEpochBytes),
                Number("k_sigma",
                       "Published envelope-indicator thresholds = mean + k_sigma x standard "
                       "deviation.",

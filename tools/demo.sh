@@ -37,10 +37,10 @@ for ((i = 0; i < ${#defaults[@]}; i += 2)); do
   given "${defaults[i]}" "$@" || sim_args+=("${defaults[i]}" "${defaults[i + 1]}")
 done
 sim_args+=("$@")
-monitor_args=(monitor --count $((healthy + faulty)) --timeout 180)
+monitor_args=(--count $((healthy + faulty)) --timeout 180)
 if [[ ${GEARPATH_DEMO_DRY_RUN:-} == 1 ]]; then  # what would run, one argument a line (tests/tools)
   printf 'monitor\n'
-  printf '%s\n' "${monitor_args[@]:1}"
+  printf '%s\n' "${monitor_args[@]}"
   printf 'sim\n'
   printf '%s\n' "${sim_args[@]}"
   exit 0
@@ -58,7 +58,7 @@ cleanup() {
 }
 trap cleanup EXIT
 
-"$build/tools/gearpath" "${monitor_args[@]}" &
+"$build/tools/gearpath" monitor "${monitor_args[@]}" &
 monitor=$!
 "$build/tools/gearpath" sim "${sim_args[@]}" >"$log/sim.log"
 wait "$monitor"
