@@ -334,6 +334,19 @@ struct Gearpathd::Impl {
   std::unique_ptr<MetricsServer> metrics_server;
 };
 
+namespace {
+
+// A machine given a new analysis.baseline.epoch (after maintenance) forgets on purpose: said the
+// same way whether the old baseline came from the previous generation or from the saved state.
+void LogNewEpoch(const MachineRuntime& m, const std::string& was) {
+  spdlog::warn(
+      "{}: baseline epoch \"{}\" -> \"{}\": forgetting the healthy baseline and its alarm "
+      "state, learning a new baseline",
+      m.id, was, m.processor.setup().options.baseline_epoch);
+}
+
+}  // namespace
+
 // A machine of a new generation takes over what its predecessor learned (reload) or what was
 // saved (start-up, or a machine added by a reload); else it learns. The pool is paused.
 void Gearpathd::Impl::Resume(MachineLane& lane, MachineSet& previous) {
@@ -342,12 +355,8 @@ void Gearpathd::Impl::Resume(MachineLane& lane, MachineSet& previous) {
     Status st = m.processor.ImportLearnedState(old->second->processor.ExportLearnedState());
     if (!st) {
       const std::string& was = old->second->processor.setup().options.baseline_epoch;
-      const std::string& now = m.processor.setup().options.baseline_epoch;
-      if (was != now) {
-        spdlog::warn(
-            "{}: baseline epoch \"{}\" -> \"{}\": forgetting the healthy baseline and "
-            "its alarm state, learning a new baseline",
-            m.id, was, now);
+      if (was != m.processor.setup().options.baseline_epoch) {
+        LogNewEpoch(m, was);
       } else {
         spdlog::warn(
             "{}: the reloaded configuration changes what the baseline measures ({}); "
@@ -376,6 +385,11 @@ void Gearpathd::Impl::Resume(MachineLane& lane, MachineSet& previous) {
   lane.counters = std::move(s.counters);
   const double age_s = static_cast<double>(RealtimeNs() - s.saved_at_ns) * 1e-9;
   if (Status st = m.processor.ImportLearnedState(s.learned); !st) {
+    if (s.learned.baseline_epoch &&
+        *s.learned.baseline_epoch != m.processor.setup().options.baseline_epoch) {
+      LogNewEpoch(m, *s.learned.baseline_epoch);  // asked for, not a fault of the file
+      return;
+    }
     spdlog::warn("{}: saved state not used ({}); learning a new baseline (counters kept)", m.id,
                  st.error());
     return;

@@ -1,6 +1,6 @@
 // The declaration of every gearpathd configuration parameter (see config_schema.h). This is the
 // single source of truth: validation, defaults and docs/configuration.md all come from here.
-#include "core/pipeline/block_processor.h"  // kMaxBaselineEpochBytes
+#include "core/pipeline/learned_state.h"  // kMaxBaselineEpochBytes
 #include "daemon/config_schema.h"
 
 namespace gearpath::daemon {

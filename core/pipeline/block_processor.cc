@@ -535,12 +535,20 @@ LearnedState BlockProcessor::ExportLearnedState() const {
   s.baseline_load_lo = st.baseline_load_lo;
   s.baseline_load_hi = st.baseline_load_hi;
   s.baseline_load_partial = st.baseline_load_partial;
+  s.baseline_epoch = impl_->machine.setup.options.baseline_epoch;
   return s;
 }
 
 Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
   const Impl& im = *impl_;
   const MachineState& now = im.state;
+  const std::string& epoch = im.machine.setup.options.baseline_epoch;
+  if (s.baseline_epoch && *s.baseline_epoch != epoch) {
+    return Error{
+        fmt::format("the saved baseline was learned under baseline epoch \"{}\", this "
+                    "configuration's is \"{}\"",
+                    *s.baseline_epoch, epoch)};
+  }
   if (s.fingerprint != im.fingerprint) {
     return Error{
         fmt::format("the saved baseline measured something else (fingerprint {:016x}, "

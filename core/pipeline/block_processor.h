@@ -68,8 +68,6 @@ inline constexpr std::size_t kMaxShapes = 4;
 class SharedFrfOperators;  // core/pipeline/shared_frf_operators.h
 class BlockScratch;        // core/pipeline/block_scratch.h
 
-inline constexpr std::size_t kMaxBaselineEpochBytes = 64;
-
 struct AnalysisOptions {
   // --- Bearing-force identification (core/inverse): method (MWI default, Tikhonov, least
   // squares), regularisation rule (default: noise floor, eta = 1e-3, fixed per FRF set so the

@@ -1,5 +1,7 @@
 #include "core/pipeline/learned_state.h"
 
+#include <fmt/format.h>
+
 #include <complex>
 #include <string_view>
 
@@ -34,6 +36,22 @@ class Fnv1a {
 };
 
 }  // namespace
+
+Status ValidateBaselineEpoch(std::string_view epoch) {
+  for (std::size_t i = 0; i < epoch.size(); ++i) {
+    const auto c = static_cast<unsigned char>(epoch[i]);
+    if (c < 0x20 || c == 0x7f) {
+      return Error{
+          fmt::format("holds control character 0x{:02x} at byte {}: give one line of "
+                      "printable text",
+                      c, i)};
+    }
+  }
+  if (epoch.size() > kMaxBaselineEpochBytes) {
+    return Error{fmt::format("is {} bytes long, at most {}", epoch.size(), kMaxBaselineEpochBytes)};
+  }
+  return Status::Ok();
+}
 
 std::uint64_t LearnedStateFingerprint(const MachineContext& m) {
   Fnv1a h;

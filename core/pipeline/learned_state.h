@@ -10,10 +10,14 @@
 // options that changed restart the alarm model, keeping the baseline.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
+#include "core/common/result.h"
 #include "core/diagnosis/alarm_model.h"
 #include "core/diagnosis/healthy_baseline.h"
 #include "core/diagnosis/robust_baseline.h"
@@ -46,7 +50,15 @@ struct LearnedState {
   double baseline_load_lo = 0.0;
   double baseline_load_hi = 0.0;
   bool baseline_load_partial = false;
+  // The analysis.baseline.epoch it was learned under, so that a refusal can name the one it
+  // replaces; absent in states saved before it was recorded (the fingerprint still decides).
+  std::optional<std::string> baseline_epoch;
 };
+
+// An analysis.baseline.epoch (from a configuration or a saved state) is logged and hashed as it
+// is: one line of printable text of at most kMaxBaselineEpochBytes. The error names the byte.
+inline constexpr std::size_t kMaxBaselineEpochBytes = 64;
+Status ValidateBaselineEpoch(std::string_view epoch);
 
 // FNV-1a over everything that shapes the indicator vector and its values (header comment).
 std::uint64_t LearnedStateFingerprint(const MachineContext& machine);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace gearpath {
 namespace {
@@ -111,6 +112,7 @@ json ToJson(const LearnedState& s) {
   j["baseline_speed_hz"] = {s.baseline_speed_lo_hz, s.baseline_speed_hi_hz};
   j["baseline_load"] = {s.baseline_load_lo, s.baseline_load_hi};
   j["baseline_load_partial"] = s.baseline_load_partial;
+  if (s.baseline_epoch) j["baseline_epoch"] = *s.baseline_epoch;
   return j;
 }
 
@@ -191,6 +193,18 @@ Result<LearnedState> LearnedStateFromJson(const json& j) {
     }
     if (j.contains("baseline_load_partial")) {
       s.baseline_load_partial = j.at("baseline_load_partial").get<bool>();
+    }
+    // Absent in states written before it was recorded.
+    if (j.contains("baseline_epoch")) {
+      if (!j.at("baseline_epoch").is_string()) {
+        return Error{"learned state: baseline_epoch: expected text, got " +
+                     std::string(j.at("baseline_epoch").type_name())};
+      }
+      std::string epoch = j.at("baseline_epoch").get<std::string>();
+      if (Status st = ValidateBaselineEpoch(epoch); !st) {
+        return Error{"learned state: baseline_epoch " + st.error()};
+      }
+      s.baseline_epoch = std::move(epoch);
     }
     return s;
   } catch (const std::exception& e) {

@@ -72,18 +72,8 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
     return Error{at +
                  fmt::format("options.load_tolerance must be in [0, 1], got {}", o.load_tolerance)};
   }
-  // The epoch is logged and hashed as it is: one line of printable text.
-  for (std::size_t i = 0; i < o.baseline_epoch.size(); ++i) {
-    const auto c = static_cast<unsigned char>(o.baseline_epoch[i]);
-    if (c < 0x20 || c == 0x7f) {
-      return Error{at + fmt::format("options.baseline_epoch holds control character 0x{:02x} at "
-                                    "byte {}: give one line of printable text",
-                                    c, i)};
-    }
-  }
-  if (o.baseline_epoch.size() > kMaxBaselineEpochBytes) {
-    return Error{at + fmt::format("options.baseline_epoch is {} bytes long, at most {}",
-                                  o.baseline_epoch.size(), kMaxBaselineEpochBytes)};
+  if (Status st = ValidateBaselineEpoch(o.baseline_epoch); !st) {
+    return Error{at + "options.baseline_epoch " + st.error()};
   }
   if (!(o.mesh_separation >= 1.0 && o.mesh_separation <= 100.0)) {
     return Error{

@@ -103,7 +103,7 @@ TEST_F(GearpathdState, AReloadKeepsTheBaselineUnlessItChangesWhatItMeasures) {
 
 // After maintenance the plant changes the machine's baseline.epoch and reloads: the alarm and
 // the baseline of the broken gearbox go, the repaired one is learned, and what it learned
-// survives a restart under the new epoch.
+// survives a restart under the new epoch; a later epoch given at a restart is refused by name.
 TEST_F(GearpathdState, ANewEpochOnReloadForgetsTheBaselineAndTheNewOneSurvivesARestart) {
   LearnHealthy();
   GearboxSimulator broken = Table1Simulator(FaultType::kToothFracture, "G1", 21);
@@ -137,6 +137,18 @@ TEST_F(GearpathdState, ANewEpochOnReloadForgetsTheBaselineAndTheNewOneSurvivesAR
   ASSERT_TRUE(resumed.has_value()) << daemon_->Log();
   EXPECT_EQ((*resumed)->state, gearpath_NO_FAULT) << (*resumed)->reason << "\n" << daemon_->Log();
   EXPECT_NE(daemon_->Log().find("resumed from"), std::string::npos) << daemon_->Log();
+
+  // A new epoch given while it was stopped: the saved state names the one it replaces.
+  const std::string next = "2026-12-03 G4 replaced";
+  config_["machines"][0]["analysis"]["baseline"]["epoch"] = next;
+  WriteConfig(config_);
+  RestartDaemon(SIGTERM);
+  auto relearning = Judge(repaired);
+  ASSERT_TRUE(relearning.has_value()) << daemon_->Log();
+  EXPECT_EQ((*relearning)->state, gearpath_LEARNING) << (*relearning)->reason;
+  EXPECT_NE(daemon_->Log().find("baseline epoch \"" + epoch + "\" -> \"" + next + "\""),
+            std::string::npos)
+      << daemon_->Log();
 }
 
 }  // namespace

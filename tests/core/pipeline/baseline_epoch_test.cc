@@ -8,6 +8,7 @@
 #include <string_view>
 #include <utility>
 
+#include "core/pipeline/learned_state_json.h"
 #include "tests/core/pipeline/simulated_machine.h"
 
 namespace gearpath {
@@ -63,7 +64,10 @@ TEST(BaselineEpochTest, ANewEpochForgetsTheBaselineAndTheAlarm) {
   ASSERT_TRUE(repaired.ok());
   const Status refused = repaired->ImportLearnedState(saved);
   ASSERT_FALSE(refused.ok());
-  EXPECT_NE(refused.error().find("baseline epoch"), std::string::npos) << refused.error();
+  EXPECT_NE(refused.error().find("learned under baseline epoch \"\", this configuration's is "
+                                 "\"2026-11-29 G1 replaced\""),
+            std::string::npos)
+      << refused.error();
   GearboxSimulator healthy = MakeSimulator(Table1Machine(), FaultType::kNone, "", 31);
   const BlockResult first = RunBlocks(repaired.value(), healthy, 1, seq);
   EXPECT_EQ(first.verdict.state, FaultState::kLearning) << first.verdict.reason.view();
@@ -75,6 +79,57 @@ TEST(BaselineEpochTest, ANewEpochForgetsTheBaselineAndTheAlarm) {
   auto restarted = BlockProcessor::Create(SetupWithEpoch("2026-11-29 G1 replaced"));
   ASSERT_TRUE(restarted.ok());
   EXPECT_TRUE(restarted->ImportLearnedState(repaired->ExportLearnedState()).ok());
+}
+
+// The saved state names the epoch it was learned under, so that the refusal can name it after a
+// restart too; a state saved before the epoch was recorded is judged by its fingerprint alone.
+TEST(BaselineEpochTest, TheSavedStateCarriesItsEpochAndOneWithoutItStillResumes) {
+  std::uint64_t seq = 0;
+  const LearnedState saved = LearnedAt("2026-11-29 G1 replaced", seq).ExportLearnedState();
+  const nlohmann::json j = ToJson(saved);
+  ASSERT_EQ(j.at("baseline_epoch"), "2026-11-29 G1 replaced");
+  auto read = LearnedStateFromJson(nlohmann::json::parse(j.dump()));
+  ASSERT_TRUE(read.ok()) << read.error();
+  ASSERT_TRUE(read->baseline_epoch.has_value());
+  EXPECT_EQ(*read->baseline_epoch, "2026-11-29 G1 replaced");
+
+  auto later = BlockProcessor::Create(SetupWithEpoch("2026-12-03 G2 replaced"));
+  ASSERT_TRUE(later.ok());
+  const Status refused = later->ImportLearnedState(read.value());
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().find("\"2026-11-29 G1 replaced\", this configuration's is "
+                                 "\"2026-12-03 G2 replaced\""),
+            std::string::npos)
+      << refused.error();
+
+  // Written before the key existed: no epoch, and an empty one hashed nothing.
+  nlohmann::json old = ToJson(LearnedAt("", seq).ExportLearnedState());
+  old.erase("baseline_epoch");
+  auto old_read = LearnedStateFromJson(old);
+  ASSERT_TRUE(old_read.ok()) << old_read.error();
+  EXPECT_FALSE(old_read->baseline_epoch.has_value());
+  auto resumed = BlockProcessor::Create(SetupWithEpoch(""));
+  ASSERT_TRUE(resumed.ok());
+  EXPECT_TRUE(resumed->ImportLearnedState(old_read.value()).ok());
+  EXPECT_EQ(resumed->baseline_blocks_learned(), kBaselineBlocks);
+  // ... and under a new epoch it is refused by its fingerprint, the old epoch unknown.
+  auto renamed = BlockProcessor::Create(SetupWithEpoch("2026-11-29 G1 replaced"));
+  ASSERT_TRUE(renamed.ok());
+  const Status by_fingerprint = renamed->ImportLearnedState(old_read.value());
+  ASSERT_FALSE(by_fingerprint.ok());
+  EXPECT_NE(by_fingerprint.error().find("fingerprint"), std::string::npos)
+      << by_fingerprint.error();
+
+  // A saved epoch is read with the checks of a configured one.
+  for (const nlohmann::json& bad :
+       {nlohmann::json("two\nlines"), nlohmann::json(std::string(kMaxBaselineEpochBytes + 1, 'x')),
+        nlohmann::json(7)}) {
+    nlohmann::json edited = j;
+    edited["baseline_epoch"] = bad;
+    auto r = LearnedStateFromJson(edited);
+    ASSERT_FALSE(r.ok()) << bad;
+    EXPECT_NE(r.error().find("baseline_epoch"), std::string::npos) << r.error();
+  }
 }
 
 TEST(BaselineEpochTest, AnEpochWithAControlCharacterOrTooLongIsRefusedByName) {
