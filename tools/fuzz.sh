@@ -20,7 +20,7 @@ shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
   targets=(fuzz_daemon_config fuzz_frf_set fuzz_recording fuzz_uff58 fuzz_text_export
-           fuzz_block_validation)
+           fuzz_block_validation fuzz_machine_state)
 fi
 
 cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
