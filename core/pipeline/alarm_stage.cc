@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <limits>
 
@@ -26,6 +27,19 @@ std::size_t AppendGears(char* buf, std::size_t cap, std::size_t pos, const Verdi
     first = false;
   }
   return pos;
+}
+
+// Appends printf-style text to buf[pos..cap) (truncated at cap); a function rather than a lambda
+// so that the compiler checks each format against its arguments.
+__attribute__((format(printf, 4, 5))) std::size_t AppendFormat(char* buf, std::size_t cap,
+                                                               std::size_t pos, const char* format,
+                                                               ...) noexcept {
+  if (pos + 1 >= cap) return pos;
+  std::va_list args;
+  va_start(args, format);
+  const int n = std::vsnprintf(buf + pos, cap - pos, format, args);
+  va_end(args);
+  return n > 0 ? std::min(cap - 1, pos + static_cast<std::size_t>(n)) : pos;
 }
 
 }  // namespace
@@ -70,28 +84,29 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
   const bool judged = ctx.out.score.judged;
   char buf[256];
   std::size_t pos = 0;
-  const auto add = [&](const char* format, auto... args) {
-    if (pos + 1 >= sizeof buf) return;
-    const int n = std::snprintf(buf + pos, sizeof buf - pos, format, args...);
-    if (n > 0) pos = std::min(sizeof buf - 1, pos + static_cast<std::size_t>(n));
-  };
   if (!judged) {
     switch (ctx.out.score.not_judged) {
       case NotJudgedCause::kSpeedOutside:
-        add("input speed %.4g Hz outside the %.4g-%.4g Hz the healthy baseline was learned at "
+        pos = AppendFormat(
+            buf, sizeof buf, pos,
+            "input speed %.4g Hz outside the %.4g-%.4g Hz the healthy baseline was learned at "
             "(+/- %.2g %%): not judged, state held",
             w.speed_hz, ctx.out.score.baseline_speed_lo_hz, ctx.out.score.baseline_speed_hi_hz,
             100.0 * m.setup.options.speed_tolerance);
         break;
       case NotJudgedCause::kLoadOutside:
-        add("load %.4g outside the %.4g-%.4g the healthy baseline was learned at (+/- %.2g %%): "
+        pos = AppendFormat(
+            buf, sizeof buf, pos,
+            "load %.4g outside the %.4g-%.4g the healthy baseline was learned at (+/- %.2g %%): "
             "not judged, state held",
             ctx.block.load, ctx.out.score.baseline_load_lo, ctx.out.score.baseline_load_hi,
             100.0 * m.setup.options.load_tolerance);
         break;
       case NotJudgedCause::kSpeedUnknown:
       case NotJudgedCause::kNone:  // not reached: a learned machine's unjudged block has a cause
-        add("input speed unknown (not in the block, not configured, no mesh lines to track): "
+        pos = AppendFormat(
+            buf, sizeof buf, pos,
+            "input speed unknown (not in the block, not configured, no mesh lines to track): "
             "indicators not computed, state held");
         break;
     }
@@ -134,7 +149,7 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
     v.mesh = mesh;
   }
   if (!judged) {  // the gears named while the state was raised; no confidence from this block
-    add(" -> ");
+    pos = AppendFormat(buf, sizeof buf, pos, " -> ");
     pos = AppendGears(buf, sizeof buf, pos, t, mask);
     v.reason.Assign(std::string_view(buf, pos));
     return RejectReason::kNone;
@@ -151,24 +166,29 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
           : 1.0;
   v.confidence = Clamp01((0.5 * strength + 0.5 * persistence) * (0.5 + 0.5 * separation));
 
-  add("%.*s of %.*s at %.1fx its limit at shaft rate %.3g Hz (%d of %d blocks)",
-      static_cast<int>(ctx.out.score.indicator.size()), ctx.out.score.indicator.data(),
-      static_cast<int>(ctx.out.score.signal.size()), ctx.out.score.signal.data(), score,
-      v.characteristic_hz, a.exceed_count, a.window);
+  pos =
+      AppendFormat(buf, sizeof buf, pos,
+                   "%.*s of %.*s at %.1fx its limit at shaft rate %.3g Hz (%d of %d blocks)",
+                   static_cast<int>(ctx.out.score.indicator.size()), ctx.out.score.indicator.data(),
+                   static_cast<int>(ctx.out.score.signal.size()), ctx.out.score.signal.data(),
+                   score, v.characteristic_hz, a.exceed_count, a.window);
   if (loc.mesh_count > 1) {
-    add(loc.mesh >= 0 ? "; mesh %s by its transfer signature (%.0f %% vs %.0f %%)"
+    pos = AppendFormat(
+        buf, sizeof buf, pos,
+        loc.mesh >= 0 ? "; mesh %s by its transfer signature (%.0f %% vs %.0f %%)"
                       : "; meshes not separated by their transfer signatures (%s%.0f %% vs "
                         "%.0f %%)",
         loc.mesh >= 0 ? t.mesh_names[static_cast<std::size_t>(loc.mesh)].c_str() : "",
         100.0 * loc.mesh_evidence, 100.0 * loc.other_evidence);
   }
   if (v.candidates.size() == 1) {
-    add(" -> gear ");
+    pos = AppendFormat(buf, sizeof buf, pos, " -> gear ");
   } else if (v.candidates.size() > 1) {
-    add(" -> candidates ");
+    pos = AppendFormat(buf, sizeof buf, pos, " -> candidates ");
   }
   pos = AppendGears(buf, sizeof buf, pos, t, mask);
-  if (v.candidates.size() > 1 && v.mesh >= 0) add(": same mesh and shaft rate, inseparable");
+  if (v.candidates.size() > 1 && v.mesh >= 0)
+    pos = AppendFormat(buf, sizeof buf, pos, ": same mesh and shaft rate, inseparable");
   v.reason.Assign(std::string_view(buf, pos));
   return RejectReason::kNone;
 }
