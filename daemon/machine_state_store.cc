@@ -21,7 +21,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::string_view kFormat = "gearpathd-machine-state";
 constexpr int kVersion = 1;
 // A learned state holds N x K samples only while learning; a few MB at most.
 constexpr std::size_t kMaxStateFileBytes = std::size_t{256} << 20;
@@ -155,19 +154,16 @@ std::string MachineStateStore::PathOf(std::string_view machine_id) const {
   return (std::filesystem::path(directory_) / (name + ".state.json")).string();
 }
 
-Result<std::optional<SavedMachine>> MachineStateStore::Load(std::string_view machine_id) const {
-  const std::string path = PathOf(machine_id);
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return std::optional<SavedMachine>{};
+Result<SavedMachine> ReadSavedMachine(const std::string& path) {
   JsonReadLimits limits;
   limits.max_bytes = kMaxStateFileBytes;
   auto parsed = ReadJsonFile(path, limits);
   if (!parsed) return Error{parsed.error()};
   const json& j = parsed.value();
   try {
-    if (!j.is_object() || j.value("format", "") != kFormat) {
+    if (!j.is_object() || j.value("format", "") != kMachineStateFormatName) {
       return Error{fmt::format("{}: not a gearpathd machine state (format \"{}\" expected)", path,
-                               kFormat)};
+                               kMachineStateFormatName)};
     }
     if (j.at("version") != kVersion) {
       return Error{fmt::format("{}: state version {} is not {} (written by another gearpathd "
@@ -176,24 +172,33 @@ Result<std::optional<SavedMachine>> MachineStateStore::Load(std::string_view mac
     }
     SavedMachine m;
     m.machine_id = j.at("machine_id").get<std::string>();
-    if (m.machine_id != machine_id) {
-      return Error{fmt::format("{}: holds machine \"{}\", not \"{}\"", path, m.machine_id,
-                               machine_id)};
-    }
     m.saved_at_ns = j.at("saved_at_ns").get<std::int64_t>();
     m.counters = CountersFromJson(j.at("counters"));
     auto learned = LearnedStateFromJson(j.at("learned"));
     if (!learned) return Error{fmt::format("{}: {}", path, learned.error())};
     m.learned = std::move(learned.value());
-    return std::optional<SavedMachine>(std::move(m));
+    return m;
   } catch (const std::exception& e) {
     return Error{fmt::format("{}: {}", path, e.what())};
   }
 }
 
+Result<std::optional<SavedMachine>> MachineStateStore::Load(std::string_view machine_id) const {
+  const std::string path = PathOf(machine_id);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return std::optional<SavedMachine>{};
+  auto m = ReadSavedMachine(path);
+  if (!m) return Error{m.error()};
+  if (m->machine_id != machine_id) {
+    return Error{
+        fmt::format("{}: holds machine \"{}\", not \"{}\"", path, m->machine_id, machine_id)};
+  }
+  return std::optional<SavedMachine>(std::move(m.value()));
+}
+
 Status MachineStateStore::Save(const SavedMachine& m) const {
   json j;
-  j["format"] = kFormat;
+  j["format"] = kMachineStateFormatName;
   j["version"] = kVersion;
   j["machine_id"] = m.machine_id;
   j["saved_at_ns"] = m.saved_at_ns;

@@ -20,12 +20,19 @@
 
 namespace gearpath::daemon {
 
+// The file's "format" (docs/state.md).
+inline constexpr std::string_view kMachineStateFormatName = "gearpathd-machine-state";
+
 struct SavedMachine {
   std::string machine_id;
   std::int64_t saved_at_ns = 0;  // wall clock
   LearnedState learned;
   MachineCounters counters;  // received, processed, rejected (by reason), lost
 };
+
+// Reads one state file as MachineStateStore::Load does, whichever machine it names (for
+// `gearpath inspect`); errors name the file.
+Result<SavedMachine> ReadSavedMachine(const std::string& path);
 
 // The configured directory, else the first entry of $STATE_DIRECTORY (systemd), else empty.
 std::string ResolveStateDirectory(const DaemonConfig& config);

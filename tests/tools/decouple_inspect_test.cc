@@ -343,6 +343,60 @@ TEST_F(DecoupleInspect, InspectShowsTheLoadRangeOfARecordingThatCarriesIt) {
   EXPECT_EQ(j["load"], nlohmann::json::parse(R"({"min": 55.0, "max": 72.5, "unit": "kW"})")) << j;
 }
 
+// A machine state file as gearpathd wrote it (the fuzz seed, made by the daemon's own writer),
+// given the epoch, alarm, ranges and counts of a machine after maintenance: inspect shows what
+// the daemon would resume, and refuses a file the daemon would refuse, by key.
+TEST_F(DecoupleInspect, InspectShowsWhatAMachineStateFileWouldResume) {
+  std::ifstream seed(std::string(GEARPATH_SOURCE_DIR) +
+                     "/tests/fuzz/corpus/fuzz_machine_state/learned.state.json");
+  ASSERT_TRUE(seed.good());
+  nlohmann::json state = nlohmann::json::parse(seed);
+  state["machine_id"] = "gearbox-1";
+  state["saved_at_ns"] = 1795000000000000000;
+  state["counters"]["received"] = 1200;
+  state["counters"]["not_judged"] = {{"load_outside", 5}};
+  nlohmann::json& learned = state["learned"];
+  learned["baseline_epoch"] = "2026-11-29 G1 replaced";
+  learned["alarm"]["state"] = "alarm";
+  learned["baseline_speed_hz"] = {7.5, 7.6};
+  learned["baseline_load"] = {96.0, 104.0};
+  learned["baseline_load_partial"] = false;
+  std::ofstream(dir_ / "gearbox-1.state.json") << state.dump();
+  std::string out, err;
+  ASSERT_EQ(RunTool({"inspect", (dir_ / "gearbox-1.state.json").string(), "--json"}, dir_,
+                    "inspect", &out, &err),
+            0)
+      << err;
+  const auto j = nlohmann::json::parse(out);
+  EXPECT_EQ(j["kind"], "machine-state");
+  EXPECT_EQ(j["machine_id"], "gearbox-1");
+  EXPECT_EQ(j["saved_at"], "2026-11-18T11:06:40.000Z");
+  EXPECT_EQ(j["baseline_epoch"], "2026-11-29 G1 replaced");
+  EXPECT_EQ(j["verdict_state"], "alarm");
+  EXPECT_FALSE(j["baseline"]["learning"].get<bool>());
+  EXPECT_EQ(j["baseline"]["blocks_learned"], j["baseline"]["blocks_needed"]);
+  EXPECT_EQ(j["speed_range_hz"], nlohmann::json::parse("[7.5, 7.6]"));
+  EXPECT_EQ(j["load_range"], nlohmann::json::parse("[96.0, 104.0]"));
+  EXPECT_EQ(j["blocks"]["received"], 1200);
+  EXPECT_EQ(j["blocks"]["not_judged"], nlohmann::json::parse(R"({"load_outside": 5})"));
+
+  // Saved before the epoch was recorded: said so, not shown as an empty epoch.
+  learned.erase("baseline_epoch");
+  std::ofstream(dir_ / "old.state.json") << state.dump();
+  ASSERT_EQ(
+      RunTool({"inspect", (dir_ / "old.state.json").string(), "--json"}, dir_, "old", &out, &err),
+      0)
+      << err;
+  EXPECT_EQ(nlohmann::json::parse(out)["baseline_epoch"], "(not recorded)");
+
+  // What the daemon would refuse is refused, with the key.
+  learned["baseline_epoch"] = "two\nlines";
+  std::ofstream(dir_ / "bad.state.json") << state.dump();
+  EXPECT_EQ(RunTool({"inspect", (dir_ / "bad.state.json").string()}, dir_, "bad", nullptr, &err),
+            2);
+  EXPECT_NE(err.find("baseline_epoch holds control character 0x0a"), std::string::npos) << err;
+}
+
 TEST_F(DecoupleInspect, InspectRejectsMissingAndUnknownInputs) {
   std::string err;
   EXPECT_EQ(RunTool({"inspect", (dir_ / "none").string()}, dir_, "i1", nullptr, &err), 2);

@@ -7,6 +7,8 @@
 // (H_pa - H_aa) (what Eqs. 22/24 invert) and of the decoupled matrix (what the daemon inverts),
 // summarised as min / median / worst with the worst bin's frequency. Recordings: layout, block
 // count, duration, time span, sequence gaps, speed range, load range, non-finite samples.
+#include <fmt/format.h>
+
 #include <CLI/CLI.hpp>
 #include <Eigen/SVD>
 #include <algorithm>
@@ -27,6 +29,7 @@
 #include "core/io/recording.h"
 #include "core/io/text_export.h"
 #include "core/io/uff58.h"
+#include "daemon/machine_state_store.h"
 #include "tools/commands/commands.h"
 #include "tools/common/replay_input.h"
 
@@ -257,6 +260,58 @@ json InspectUff(const std::vector<Uff58Record>& records) {
   return {{"kind", "uff58"}, {"records", list}};
 }
 
+// A gearpathd machine state file (docs/state.md): what the daemon will resume for the machine
+// at its next start, so that an operator can check the epoch and the alarm before restarting.
+json InspectMachineState(const daemon::SavedMachine& m) {
+  const LearnedState& l = m.learned;
+  json j;
+  j["kind"] = "machine-state";
+  j["machine_id"] = m.machine_id;
+  j["saved_at"] = UtcTime(m.saved_at_ns);
+  j["baseline_epoch"] = l.baseline_epoch ? json(*l.baseline_epoch) : json("(not recorded)");
+  j["fingerprint"] = fmt::format("{:016x}", l.fingerprint);
+  j["baseline"] = {{"learning", l.learning},
+                   {"blocks_learned", l.indicator_baseline.count},
+                   {"blocks_needed", l.indicator_baseline.blocks},
+                   {"indicators", l.indicator_baseline.indicators}};
+  j["verdict_state"] = std::string(ToString(l.alarm.state));
+  j["blocks_in_state"] = l.alarm.blocks_in_state;
+  // [0, 0]: saved before the range was kept, or blocks without it; every value is judged.
+  const auto range = [](double lo, double hi) {
+    return lo == 0.0 && hi == 0.0 ? json("every") : json::array({lo, hi});
+  };
+  j["speed_range_hz"] = range(l.baseline_speed_lo_hz, l.baseline_speed_hi_hz);
+  j["load_range"] = l.baseline_load_partial
+                        ? json("every (not every baseline block carried a load)")
+                        : range(l.baseline_load_lo, l.baseline_load_hi);
+  j["order_tracking"] = l.order_tracking_mode < 0    ? "not decided"
+                        : l.order_tracking_mode == 0 ? "constant speed"
+                                                     : "tracked";
+  const daemon::MachineCounters& c = m.counters;
+  json not_judged = json::object();
+  for (std::size_t i = 1; i < c.not_judged.size(); ++i) {
+    if (c.not_judged[i] > 0) {
+      not_judged[std::string(ToString(static_cast<NotJudgedCause>(i)))] = c.not_judged[i];
+    }
+  }
+  j["blocks"] = {{"received", c.received},
+                 {"processed", c.processed},
+                 {"rejected", c.rejected},
+                 {"lost", c.lost},
+                 {"not_judged", not_judged}};
+  return j;
+}
+
+// A JSON file whose "format" is that of a machine state (bounded read; anything else is not).
+bool IsMachineStateFile(const fs::path& path) {
+  if (path.extension() != ".json") return false;
+  Result<json> j = ReadJsonFile<json>(path, {kMaxJsonDepth, std::size_t{256} << 20});
+  if (!j || !j->is_object()) return false;
+  const auto it = j->find("format");
+  return it != j->end() && it->is_string() &&
+         it->get<std::string>() == daemon::kMachineStateFormatName;
+}
+
 void PrintJsonAsText(const json& j, int indent) {
   const std::string pad(static_cast<std::size_t>(indent) * 2, ' ');
   for (auto it = j.begin(); it != j.end(); ++it) {
@@ -332,6 +387,10 @@ int RunInspect(const InspectOptions& opt) {
       }
       report = {{"kind", "recordings"}, {"recordings", list}};
     }
+  } else if (IsMachineStateFile(path)) {
+    Result<daemon::SavedMachine> state = daemon::ReadSavedMachine(path.string());
+    if (!state) return fail(state.error());
+    report = InspectMachineState(*state);
   } else if (GuessReplayFormat(path) == ReplayFormat::kUff58) {
     Result<std::vector<Uff58Record>> records = ReadUff58(path);
     if (!records) return fail(records.error());
@@ -370,9 +429,10 @@ void AddInspectCommand(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<InspectOptions>();
   CLI::App* cmd = app.add_subcommand(
       "inspect",
-      "Show what an FRF set, a recording, a text export or a UFF file holds, with "
-      "checks (finiteness, reciprocity, condition numbers)");
-  cmd->add_option("input", opt->input, "FRF set or recording directory, text export, .unv/.uff")
+      "Show what an FRF set, a recording, a text export, a UFF file or a gearpathd machine "
+      "state file holds, with checks (finiteness, reciprocity, condition numbers)");
+  cmd->add_option("input", opt->input,
+                  "FRF set or recording directory, text export, .unv/.uff, <machine>.state.json")
       ->required();
   cmd->add_flag("--json", opt->json_output, "Machine-readable JSON");
   cmd->callback([opt, &exit_code] {
