@@ -187,8 +187,9 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
     pos = AppendFormat(buf, sizeof buf, pos, " -> candidates ");
   }
   pos = AppendGears(buf, sizeof buf, pos, t, mask);
-  if (v.candidates.size() > 1 && v.mesh >= 0)
+  if (v.candidates.size() > 1 && v.mesh >= 0) {
     pos = AppendFormat(buf, sizeof buf, pos, ": same mesh and shaft rate, inseparable");
+  }
   v.reason.Assign(std::string_view(buf, pos));
   return RejectReason::kNone;
 }
