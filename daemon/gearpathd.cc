@@ -336,13 +336,18 @@ struct Gearpathd::Impl {
 
 namespace {
 
-// A machine given a new analysis.baseline.epoch (after maintenance) forgets on purpose: said the
-// same way whether the old baseline came from the previous generation or from the saved state.
-void LogNewEpoch(const MachineRuntime& m, const std::string& was) {
+// A machine given a new analysis.baseline.epoch (after maintenance) forgets on purpose. The
+// learned state names the epoch it was learned under (from the previous generation, or from the
+// saved file unless an earlier build saved it), so both paths tell it apart from a refusal the
+// same way, and say it the same way. False when the epoch did not change (or is not recorded).
+bool LogIfNewEpoch(const MachineRuntime& m, const LearnedState& learned) {
+  const std::string& now = m.processor.setup().options.baseline_epoch;
+  if (!learned.baseline_epoch || *learned.baseline_epoch == now) return false;
   spdlog::warn(
       "{}: baseline epoch \"{}\" -> \"{}\": forgetting the healthy baseline and its alarm "
       "state, learning a new baseline",
-      m.id, was, m.processor.setup().options.baseline_epoch);
+      m.id, *learned.baseline_epoch, now);
+  return true;
 }
 
 }  // namespace
@@ -352,12 +357,9 @@ void LogNewEpoch(const MachineRuntime& m, const std::string& was) {
 void Gearpathd::Impl::Resume(MachineLane& lane, MachineSet& previous) {
   MachineRuntime& m = *lane.runtime;
   if (auto old = previous.machines.find(m.id); old != previous.machines.end()) {
-    Status st = m.processor.ImportLearnedState(old->second->processor.ExportLearnedState());
-    if (!st) {
-      const std::string& was = old->second->processor.setup().options.baseline_epoch;
-      if (was != m.processor.setup().options.baseline_epoch) {
-        LogNewEpoch(m, was);
-      } else {
+    const LearnedState learned = old->second->processor.ExportLearnedState();
+    if (Status st = m.processor.ImportLearnedState(learned); !st) {
+      if (!LogIfNewEpoch(m, learned)) {
         spdlog::warn(
             "{}: the reloaded configuration changes what the baseline measures ({}); "
             "learning a new baseline",
@@ -385,11 +387,7 @@ void Gearpathd::Impl::Resume(MachineLane& lane, MachineSet& previous) {
   lane.counters = std::move(s.counters);
   const double age_s = static_cast<double>(RealtimeNs() - s.saved_at_ns) * 1e-9;
   if (Status st = m.processor.ImportLearnedState(s.learned); !st) {
-    if (s.learned.baseline_epoch &&
-        *s.learned.baseline_epoch != m.processor.setup().options.baseline_epoch) {
-      LogNewEpoch(m, *s.learned.baseline_epoch);  // asked for, not a fault of the file
-      return;
-    }
+    if (LogIfNewEpoch(m, s.learned)) return;  // asked for, not a fault of the file
     spdlog::warn("{}: saved state not used ({}); learning a new baseline (counters kept)", m.id,
                  st.error());
     return;

@@ -21,6 +21,7 @@ namespace {
 
 using nlohmann::json;
 
+constexpr std::string_view kFormat = "gearpathd-machine-state";
 constexpr int kVersion = 1;
 // A learned state holds N x K samples only while learning; a few MB at most.
 constexpr std::size_t kMaxStateFileBytes = std::size_t{256} << 20;
@@ -161,9 +162,9 @@ Result<SavedMachine> ReadSavedMachine(const std::string& path) {
   if (!parsed) return Error{parsed.error()};
   const json& j = parsed.value();
   try {
-    if (!j.is_object() || j.value("format", "") != kMachineStateFormatName) {
-      return Error{fmt::format("{}: not a gearpathd machine state (format \"{}\" expected)", path,
-                               kMachineStateFormatName)};
+    if (!j.is_object() || j.value("format", "") != kFormat) {
+      return Error{
+          fmt::format("{}: not a gearpathd machine state (format \"{}\" expected)", path, kFormat)};
     }
     if (j.at("version") != kVersion) {
       return Error{fmt::format("{}: state version {} is not {} (written by another gearpathd "
@@ -198,7 +199,7 @@ Result<std::optional<SavedMachine>> MachineStateStore::Load(std::string_view mac
 
 Status MachineStateStore::Save(const SavedMachine& m) const {
   json j;
-  j["format"] = kMachineStateFormatName;
+  j["format"] = kFormat;
   j["version"] = kVersion;
   j["machine_id"] = m.machine_id;
   j["saved_at_ns"] = m.saved_at_ns;

@@ -20,9 +20,6 @@
 
 namespace gearpath::daemon {
 
-// The file's "format" (docs/state.md).
-inline constexpr std::string_view kMachineStateFormatName = "gearpathd-machine-state";
-
 struct SavedMachine {
   std::string machine_id;
   std::int64_t saved_at_ns = 0;  // wall clock

@@ -302,14 +302,10 @@ json InspectMachineState(const daemon::SavedMachine& m) {
   return j;
 }
 
-// A JSON file whose "format" is that of a machine state (bounded read; anything else is not).
+// gearpathd names its state files <machine>.state.json (MachineStateStore::PathOf); the reader
+// then checks the format itself, so the file is read once.
 bool IsMachineStateFile(const fs::path& path) {
-  if (path.extension() != ".json") return false;
-  Result<json> j = ReadJsonFile<json>(path, {kMaxJsonDepth, std::size_t{256} << 20});
-  if (!j || !j->is_object()) return false;
-  const auto it = j->find("format");
-  return it != j->end() && it->is_string() &&
-         it->get<std::string>() == daemon::kMachineStateFormatName;
+  return path.filename().string().ends_with(".state.json");
 }
 
 void PrintJsonAsText(const json& j, int indent) {
