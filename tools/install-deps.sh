@@ -11,6 +11,7 @@ packages=(
   cyclonedds-dev cyclonedds-tools
   libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev libsystemd-dev
   libmicrohttpd-dev  # daemon/metrics_server.cc: the metrics endpoint (metrics.enabled)
+  libxxhash-dev  # core/pipeline/learned_state.cc: the learned state's fingerprint
   libgtest-dev libgmock-dev libbenchmark-dev valgrind
   python3 python3-numpy
   openssl  # tools/make-security-fixtures.sh: the DDS Security tests make their PKI at test time

@@ -549,7 +549,9 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
                     "configuration's is \"{}\"",
                     *s.baseline_epoch, epoch)};
   }
-  if (s.fingerprint != im.fingerprint) {
+  // A state saved before the fingerprint's version 2 carries version 1, computed only then.
+  if (s.fingerprint != im.fingerprint &&
+      s.fingerprint != LegacyLearnedStateFingerprint(im.machine)) {
     return Error{
         fmt::format("the saved baseline measured something else (fingerprint {:016x}, "
                     "this configuration {:016x}: FRF set, channels, gear train, "

@@ -25,6 +25,7 @@
 #include "daemon/daemon_config.h"
 #include "daemon/machine_setup_builder.h"
 #include "daemon/machine_state_store.h"
+#include "tests/fuzz/machine_state_machine.h"
 
 namespace {
 
@@ -35,24 +36,6 @@ constexpr char kMachineId[] = "fuzz";
 constexpr double kSampleRateHz = 2048.0;
 constexpr std::size_t kSamples = 1024;
 constexpr double kInputHz = 10.0;
-
-constexpr char kConfig[] = R"({
-  "machines": [{
-    "id": "fuzz", "frf_set": "identity", "nominal_speed_hz": 10.0,
-    "acquisition": {"sample_rate_hz": 2048.0, "min_samples_per_channel": 1024,
-                    "max_samples_per_channel": 1024, "prepare_samples_per_channel": [1024]},
-    "channels": [{"sensor": "A1", "axis": "x", "gears": ["G1", "G2"]},
-                 {"sensor": "A2", "axis": "z", "gears": ["G3", "G4"]}],
-    "gear_train": {
-      "shafts": [{"name": "input", "gears": ["G1"]},
-                 {"name": "intermediate", "gears": ["G2", "G3"]},
-                 {"name": "output", "gears": ["G4"]}],
-      "gears": [{"name": "G1", "teeth": 28}, {"name": "G2", "teeth": 40},
-                {"name": "G3", "teeth": 34}, {"name": "G4", "teeth": 34}],
-      "stages": [{"driver": "G1", "driven": "G2"}, {"driver": "G3", "driven": "G4"}]},
-    "analysis": {"baseline": {"learning_blocks": 3, "epoch": "fuzz"}}
-  }]
-})";
 
 struct Harness {
   fs::path dir;
@@ -94,7 +77,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
   harness = new Harness;
   harness->dir = fs::temp_directory_path() / ("gearpath_fuzz_state_" + std::to_string(::getpid()));
   fs::remove_all(harness->dir);
-  auto config = daemon::ParseDaemonConfig(kConfig, "fuzz");
+  auto config = daemon::ParseDaemonConfig(kMachineStateConfig, "fuzz");
   if (!config.ok()) return 1;
   auto setup = daemon::BuildMachineSetup(config->machines.front());
   if (!setup.ok()) return 1;
