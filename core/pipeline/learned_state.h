@@ -60,7 +60,8 @@ struct LearnedState {
 inline constexpr std::size_t kMaxBaselineEpochBytes = 64;
 Status ValidateBaselineEpoch(std::string_view epoch);
 
-// FNV-1a over everything that shapes the indicator vector and its values (header comment).
+// Version 2: FNV-1a over everything that shapes the indicator vector and its values (header
+// comment), each FRF bin entering as its XXH3 digest.
 std::uint64_t LearnedStateFingerprint(const MachineContext& machine);
 // The fingerprint as builds before 2026-12-01 computed it (every FRF byte through FNV-1a, 25 ms
 // at the reference workload against ~1 ms): a state saved by such a build still resumes when

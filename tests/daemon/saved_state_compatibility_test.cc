@@ -1,7 +1,9 @@
 // A machine state file outlives the build that saved it: a state saved before the learned
 // state's fingerprint moved to version 2 (core/pipeline/learned_state.h) still resumes, and is
-// saved again under version 2. The truth is a file an earlier build wrote (the seed of
-// fuzz_machine_state, saved 2026-11-29), not a fingerprint this build computes.
+// saved again under version 2. The truth is a file an earlier build wrote, not a fingerprint
+// this build computes: tests/data/state/fingerprint_v1.state.json, a frozen copy of the seed that
+// fuzz_machine_state saved on 2026-11-29 (the seeds themselves may be made again by a later
+// build; this copy must not be).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -39,8 +41,7 @@ class SavedStateCompatibility : public ::testing::Test {
 
   // The seed file as the earlier build saved it, read as gearpathd reads it at a start.
   SavedMachine SavedByTheEarlierBuild() {
-    fs::copy_file(fs::path(GEARPATH_SOURCE_DIR) /
-                      "tests/fuzz/corpus/fuzz_machine_state/learned.state.json",
+    fs::copy_file(fs::path(GEARPATH_TEST_DATA_DIR) / "state/fingerprint_v1.state.json",
                   store_->PathOf("fuzz"), fs::copy_options::overwrite_existing);
     auto saved = store_->Load("fuzz");
     EXPECT_TRUE(saved.ok()) << saved.error();
@@ -53,7 +54,8 @@ class SavedStateCompatibility : public ::testing::Test {
   std::optional<MachineStateStore> store_;
 };
 
-TEST_F(SavedStateCompatibility, AStateSavedUnderTheFirstFingerprintResumesAndIsSavedUnderTheSecond) {
+TEST_F(SavedStateCompatibility,
+       AStateSavedUnderTheFirstFingerprintResumesAndIsSavedUnderTheSecond) {
   const SavedMachine saved = SavedByTheEarlierBuild();
   // The earlier build's fingerprint is not this build's ...
   ASSERT_NE(saved.learned.fingerprint, processor_->learned_state_fingerprint());

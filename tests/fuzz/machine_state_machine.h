@@ -1,7 +1,8 @@
 // The machine of fuzz_machine_state (identity FRFs, two channels, 1024-sample blocks at 2048 Hz,
-// a three-block baseline), as gearpathd's configuration: its seed state files in
-// tests/fuzz/corpus/fuzz_machine_state were saved by it, so a test that builds the same machine
-// can resume them as a build of that day saved them.
+// a three-block baseline), as gearpathd's configuration. Its seed state files in
+// tests/fuzz/corpus/fuzz_machine_state were saved by it, and so was
+// tests/data/state/fingerprint_v1.state.json, which tests/daemon/saved_state_compatibility_test.cc
+// resumes as the build of 2026-11-29 saved it: change this machine and that file no longer fits.
 #pragma once
 
 namespace gearpath {
