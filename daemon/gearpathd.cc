@@ -350,6 +350,15 @@ bool LogIfNewEpoch(const MachineRuntime& m, const LearnedState& learned) {
   return true;
 }
 
+// A configuration with fewer operating bands than the state it resumes keeps what fits.
+void LogDroppedBands(const MachineRuntime& m) {
+  if (const std::size_t dropped = m.processor.operating_bands_dropped(); dropped > 0) {
+    spdlog::warn("{}: analysis.baseline.operating_bands {} holds fewer bands than were learned: "
+                 "{} band(s) dropped, the learned ones kept first",
+                 m.id, m.processor.setup().options.operating_bands, dropped);
+  }
+}
+
 }  // namespace
 
 // A machine of a new generation takes over what its predecessor learned (reload) or what was
@@ -368,6 +377,7 @@ void Gearpathd::Impl::Resume(MachineLane& lane, MachineSet& previous) {
       lane.mark = SaveMark{FaultState::kLearning, true, Clock::now(), false};
       lane.counters.fault_state = FaultState::kLearning;
     }
+    LogDroppedBands(m);
     return;  // counters and save marks carry over as they are
   }
   lane.counters = MachineCounters{};
@@ -392,6 +402,7 @@ void Gearpathd::Impl::Resume(MachineLane& lane, MachineSet& previous) {
                  st.error());
     return;
   }
+  LogDroppedBands(m);
   lane.mark.last_state = s.learned.alarm.state;
   lane.counters.fault_state = s.learned.alarm.state;
   spdlog::info("{}: resumed from {} (saved {:.0f} s ago): baseline {} of {} blocks, verdict "

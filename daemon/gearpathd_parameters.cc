@@ -1,6 +1,6 @@
 // The declaration of every gearpathd configuration parameter (see config_schema.h). This is the
 // single source of truth: validation, defaults and docs/configuration.md all come from here.
-#include "core/pipeline/learned_state.h"  // kMaxBaselineEpochBytes
+#include "core/pipeline/learned_state.h"  // kMaxBaselineEpochBytes, kMaxOperatingBands
 #include "daemon/config_schema.h"
 
 namespace gearpath::daemon {
@@ -403,6 +403,16 @@ ParamSpec AnalysisSection() {
                       "a healthy machine learned at one load exceeds its limits 20 % above it). "
                       "1 judges every load; blocks without a load are always judged.",
                       0.0, 1.0, 0.1),
+               Integer("operating_bands",
+                       "How many healthy baselines, each at its own band of input speed and "
+                       "load, the machine may learn. 1: one baseline, and a block outside its "
+                       "speeds or loads (speed_tolerance, load_tolerance) is not judged. More: "
+                       "such a block is judged against the band learned at its speed and load; "
+                       "when none was and no fault is suspected, a new band "
+                       "learns there from the blocks that stay at that operating point (the "
+                       "state holds meanwhile). A band learned while a fault develops takes it "
+                       "for healthy: raise it where the operating points recur.",
+                       1, kMaxOperatingBands, 1),
                String("epoch",
                       "A label of the healthy baseline, e.g. the date of the last "
                       "maintenance. Changing it and reloading (SIGHUP) makes this machine "

@@ -87,6 +87,7 @@ AnalysisOptions TranslateOptions(const json& m) {
   o.tail_guard = Get<bool>(base, "tail_guard");
   o.speed_tolerance = Get<double>(base, "speed_tolerance");
   o.load_tolerance = Get<double>(base, "load_tolerance");
+  o.operating_bands = Get<int>(base, "operating_bands");
   o.baseline_epoch = Get<std::string>(base, "epoch");
   const json& alarm = a.at("alarm");
   o.alarm_window = Get<int>(alarm, "window");

@@ -91,6 +91,7 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
   setup.options.order_tracking = options.order_tracking;
   setup.options.localisation_tracking = options.localisation_tracking;
   setup.options.transient_gate = options.transient_gate;
+  setup.options.operating_bands = options.operating_bands;
   if (options.speed_tolerance >= 0.0) setup.options.speed_tolerance = options.speed_tolerance;
   Result<BlockProcessor> processor = BlockProcessor::Create(std::move(setup));
   if (!processor) return Error{"block processor: " + processor.error()};
@@ -100,19 +101,22 @@ Result<ScenarioOutcome> Run(const Scenario& sc, const RunnerOptions& options) {
 
   AccelBlock block;
   BlockResult result;
-  const int total = options.baseline_blocks + options.evaluation_blocks;
+  const int step_learning = stepped ? std::max(0, options.step_learning_blocks) : 0;
+  const int first_evaluation = options.baseline_blocks + step_learning;
+  const int total = first_evaluation + options.evaluation_blocks;
   for (int b = 0; b < total; ++b) {
-    const bool evaluation = b >= options.baseline_blocks;
+    const bool at_step = b >= options.baseline_blocks;
+    const bool evaluation = b >= first_evaluation;
     const bool faulty = evaluation && sc.fault != PlantFaultKind::kNone;
-    PlantStream& source = evaluation && stepped ? *stepped : **stream;
-    if (faulty && b == options.baseline_blocks && options.target_rms_change > 0.0) {
+    PlantStream& source = at_step && stepped ? *stepped : **stream;
+    if (faulty && b == first_evaluation && options.target_rms_change > 0.0) {
       // Severity normalised on the first evaluation block, at the stream's position.
       const SeverityFit fit = source.NormaliseSeverity(options.target_rms_change);
       outcome.severity_scale = fit.scale;
       outcome.rms_change = fit.rms_change;
     }
     source.NextBlock(faulty, block);
-    const double load = evaluation ? 1.0 + options.load_step : 1.0;
+    const double load = at_step ? 1.0 + options.load_step : 1.0;
     block.load = options.load_reading ? load : 0.0;
     const ProcessOutcome po = processor->Process(block.view(), result);
     if (!po.accepted()) {

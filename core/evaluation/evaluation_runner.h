@@ -72,6 +72,11 @@ struct RunnerOptions {
   // torque reading: 1, or 1 + load_step on the evaluation blocks of a load step. Off, the
   // blocks carry none and every load is judged (AnalysisOptions::load_tolerance).
   bool load_reading = true;
+  // AnalysisOptions::operating_bands of every machine (1: one baseline).
+  int operating_bands = 1;
+  // With a speed or load step: this many healthy blocks at the new speed and load come between
+  // the baseline and the evaluation blocks (a machine with operating bands learns one there).
+  int step_learning_blocks = 0;
   // AnalysisOptions::speed_tolerance of every machine; negative keeps the default.
   double speed_tolerance = -1.0;
   // Give the machine the identity FRF set (core/frf/identity_frf_set.h: every sensor its own
@@ -79,7 +84,8 @@ struct RunnerOptions {
   // sensor sits near its bearing's gears, the housing sensor near every gear.
   bool identity_frf = false;
   // Optional: called after every processed block (baseline and evaluation) with the block's
-  // index (0-based; evaluation blocks from baseline_blocks on) and its result, on the
+  // index (0-based; evaluation blocks from baseline_blocks + step_learning_blocks on) and its
+  // result, on the
   // scenario's worker thread (the callee serialises). For analysts studying the indicators.
   std::function<void(const Scenario&, int block, const BlockResult&)> observe;
 };

@@ -54,7 +54,8 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
   GearVerdict& v = ctx.out.verdict;
   const bool scored = ctx.out.score.limit_z > 0.0;
   AlarmEvidence evidence;
-  evidence.learning = !scored && st.learning;
+  // An added operating band that learns is not the machine learning: its verdict holds.
+  evidence.learning = !scored && st.learning && !st.parked_band_learned();
   // A block that was not judged (no speed, or a speed the baseline did not learn at) is no
   // evidence either way: the alarm model holds its state.
   evidence.score =
@@ -101,6 +102,15 @@ RejectReason AlarmStage::Process(StageContext& ctx) noexcept {
             "not judged, state held",
             ctx.block.load, ctx.out.score.baseline_load_lo, ctx.out.score.baseline_load_hi,
             100.0 * m.setup.options.load_tolerance);
+        break;
+      case NotJudgedCause::kLearningBand:
+        pos = AppendFormat(
+            buf, sizeof buf, pos,
+            "learning the healthy baseline of operating band %d (of up to %d) at input speed "
+            "%.4g Hz, load %.4g (%d of %d blocks): not judged, state held",
+            ctx.out.score.operating_band, m.setup.options.operating_bands, w.speed_hz,
+            ctx.block.load, ctx.out.score.baseline_blocks_learned,
+            ctx.out.score.baseline_blocks_needed);
         break;
       case NotJudgedCause::kSpeedUnknown:
       case NotJudgedCause::kNone:  // not reached: a learned machine's unjudged block has a cause

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -24,6 +24,7 @@
 #include "core/pipeline/localisation_stage.h"
 #include "core/pipeline/machine_context.h"
 #include "core/pipeline/machine_state.h"
+#include "core/pipeline/operating_band_stage.h"
 #include "core/pipeline/path_energy_stage.h"
 #include "core/pipeline/pipeline_stage.h"
 #include "core/pipeline/shape_scratch.h"
@@ -39,6 +40,7 @@ std::vector<std::unique_ptr<PipelineStage>> MakeStages() {
   std::vector<std::unique_ptr<PipelineStage>> stages;
   stages.push_back(std::make_unique<SpectraStage>());
   stages.push_back(std::make_unique<SpeedStage>());
+  stages.push_back(std::make_unique<OperatingBandStage>());
   stages.push_back(std::make_unique<IdentificationStage>());
   stages.push_back(std::make_unique<PathEnergyStage>());
   stages.push_back(std::make_unique<DominantPathStage>());
@@ -121,7 +123,7 @@ Status InitialiseState(const MachineContext& m, MachineState& st) {
   bo.tail_z = o.tail_guard ? kTailGuardZ : 0.0;
   auto baseline = RobustBaseline::Create(m.indicator_count, bo);
   if (!baseline) return Error{at + "options.baseline: " + baseline.error()};
-  st.indicator_baseline.emplace(std::move(baseline.value()));
+  st.band.indicator_baseline.emplace(std::move(baseline.value()));
   AlarmOptions ao;
   ao.n = o.alarm_window;
   ao.suspect_k = o.suspect_k;
@@ -132,8 +134,13 @@ Status InitialiseState(const MachineContext& m, MachineState& st) {
   if (!alarm) return Error{at + "options alarm model: " + alarm.error()};
   st.alarm.emplace(std::move(alarm.value()));
   st.learning = true;
-  st.residual_variance_healthy.mean.assign(m.condition_slots.size(), 0.0);
-  st.criterion_healthy.mean.assign(m.paths, 0.0);
+  st.band.residual_variance_healthy.mean.assign(m.condition_slots.size(), 0.0);
+  st.band.criterion_healthy.mean.assign(m.paths, 0.0);
+  st.band.id = 0;
+  // The other bands' slots, empty copies of the first: made here, so that a new band costs no
+  // allocation on the processing path.
+  st.parked_bands.assign(static_cast<std::size_t>(o.operating_bands - 1), st.band);
+  st.parked_count = 0;
   st.group_excess_sum.assign(m.rate_groups.size(), 0.0);
   st.mesh_evidence_sum.assign(m.rate_groups.size() * kMaxMeshesPerShaft, 0.0);
   return Status::Ok();
@@ -151,6 +158,8 @@ std::string_view ToString(NotJudgedCause cause) noexcept {
       return "speed_outside";
     case NotJudgedCause::kLoadOutside:
       return "load_outside";
+    case NotJudgedCause::kLearningBand:
+      return "learning_band";
   }
   return "unknown";
 }
@@ -220,6 +229,7 @@ struct BlockProcessor::Impl {
   bool timing = false;
   std::array<StageTime, kMaxStageTimes> times{};
   std::size_t time_entries = 0;
+  std::size_t parked_bands_dropped = 0;  // by the last ImportLearnedState
   // The scratch of the two-argument Process() and of DominantPathSignal() / PathSignal(),
   // made when first needed: a processor that only ever runs on lent scratch has none.
   std::unique_ptr<BlockScratch> own_scratch;
@@ -255,9 +265,9 @@ Status BlockProcessor::Impl::Configure(std::size_t n) {
   }
   if (shapes.size() >= kMaxShapes) {
     // Replace the least recently used shape (the last-block pointer may dangle: reset it).
-    auto oldest = std::min_element(
-        shapes.begin(), shapes.end(),
-        [](const auto& a, const auto& b) { return a->last_used < b->last_used; });
+    auto oldest = std::min_element(shapes.begin(), shapes.end(), [](const auto& a, const auto& b) {
+      return a->last_used < b->last_used;
+    });
     shapes.erase(oldest);
     last_shape = nullptr;
   }
@@ -288,20 +298,16 @@ ShapeScratch* BlockProcessor::Impl::OwnAreaForLastShape() noexcept {
 
 void BlockProcessor::Impl::ResetLearning() noexcept {
   state.envelope_baseline->Reset();
-  state.indicator_baseline->Reset();
+  state.band.Reset();
+  state.band.id = 0;
+  for (OperatingBand& b : state.parked_bands) b.Reset();
+  state.parked_count = 0;
   state.alarm->Reset();
   state.learning = true;
   state.previous_scored = false;
-  state.residual_variance_healthy.Reset();
-  state.criterion_healthy.Reset();
   std::fill(state.group_excess_sum.begin(), state.group_excess_sum.end(), 0.0);
   std::fill(state.mesh_evidence_sum.begin(), state.mesh_evidence_sum.end(), 0.0);
   state.order_tracking_mode = -1;
-  state.baseline_speed_lo_hz = 0.0;
-  state.baseline_speed_hi_hz = 0.0;
-  state.baseline_load_lo = 0.0;
-  state.baseline_load_hi = 0.0;
-  state.baseline_load_partial = false;
 }
 
 BlockProcessor::BlockProcessor(std::unique_ptr<Impl> impl) noexcept : impl_(std::move(impl)) {}
@@ -341,8 +347,8 @@ Status BlockProcessor::Prepare(std::uint32_t samples_per_channel, BlockScratch& 
   const BlockExpectations& e = impl_->machine.expect;
   if (samples_per_channel < e.min_samples_per_channel ||
       samples_per_channel > e.max_samples_per_channel) {
-    return Error{fmt::format("machine '{}': {} samples per channel is outside {}..{}",
-                             e.machine_id, samples_per_channel, e.min_samples_per_channel,
+    return Error{fmt::format("machine '{}': {} samples per channel is outside {}..{}", e.machine_id,
+                             samples_per_channel, e.min_samples_per_channel,
                              e.max_samples_per_channel)};
   }
   try {
@@ -501,10 +507,10 @@ bool BlockProcessor::ForceAmplitude(std::size_t path, std::span<double> out) con
 }
 
 int BlockProcessor::baseline_blocks_learned() const noexcept {
-  return impl_->state.indicator_baseline->blocks_seen();
+  return impl_->state.band.indicator_baseline->blocks_seen();
 }
 int BlockProcessor::baseline_blocks_needed() const noexcept {
-  return impl_->state.indicator_baseline->blocks_needed();
+  return impl_->state.band.indicator_baseline->blocks_needed();
 }
 std::span<const std::string> BlockProcessor::ConditionIndicatorNames(
     std::size_t group) const noexcept {
@@ -514,27 +520,97 @@ std::span<const std::string> BlockProcessor::ConditionIndicatorNames(
 }
 void BlockProcessor::ResetBaseline() noexcept { impl_->ResetLearning(); }
 
+namespace {
+
+LearnedBand ExportBand(const OperatingBand& b) {
+  LearnedBand s;
+  s.band_id = b.id;
+  s.indicator_baseline = b.indicator_baseline->State();
+  s.residual_variance_healthy = b.residual_variance_healthy.mean;
+  s.residual_variance_blocks = b.residual_variance_healthy.blocks;
+  s.criterion_healthy = b.criterion_healthy.mean;
+  s.criterion_blocks = b.criterion_healthy.blocks;
+  s.baseline_speed_lo_hz = b.baseline_speed_lo_hz;
+  s.baseline_speed_hi_hz = b.baseline_speed_hi_hz;
+  s.baseline_load_lo = b.baseline_load_lo;
+  s.baseline_load_hi = b.baseline_load_hi;
+  s.baseline_load_partial = b.baseline_load_partial;
+  return s;
+}
+
+// A saved band checked against this machine's empty one (`now`: sizes and the baseline's
+// configuration), into a band ready to use.
+Result<OperatingBand> ImportBand(const LearnedBand& s, const OperatingBand& now) {
+  auto size_check = [](const char* what, std::size_t want, std::size_t got) -> Status {
+    if (want == got) return Status::Ok();
+    return Error{fmt::format("{} has {} entries, this machine {}", what, got, want)};
+  };
+  for (Status st :
+       {size_check("residual_variance_healthy", now.residual_variance_healthy.mean.size(),
+                   s.residual_variance_healthy.size()),
+        size_check("criterion_healthy", now.criterion_healthy.mean.size(),
+                   s.criterion_healthy.size()),
+        size_check("indicator_baseline", now.indicator_baseline->indicators(),
+                   static_cast<std::size_t>(s.indicator_baseline.indicators))}) {
+    if (!st) return Error{st.error()};
+  }
+  auto indicator = RobustBaseline::FromState(s.indicator_baseline);
+  if (!indicator) return Error{indicator.error()};
+  // Configuration, not state (the fingerprint vouches that it is the one it learned under).
+  indicator->set_tail_z(now.indicator_baseline->tail_z());
+  indicator->set_floor_power(now.indicator_baseline->floor_power());
+  for (const auto* v : {&s.residual_variance_healthy, &s.criterion_healthy}) {
+    for (double x : *v) {
+      if (!std::isfinite(x)) return Error{"a healthy level is not finite"};
+    }
+  }
+  if (s.residual_variance_blocks < 0 || s.criterion_blocks < 0) {
+    return Error{"negative block counts"};
+  }
+  // Each learned range: both 0 (none, or saved before it existed) or 0 < lo <= hi, finite.
+  for (const auto& [what, lo, hi] :
+       {std::tuple{"speed range", s.baseline_speed_lo_hz, s.baseline_speed_hi_hz},
+        std::tuple{"load range", s.baseline_load_lo, s.baseline_load_hi}}) {
+    if (!(lo == 0.0 && hi == 0.0) && !(lo > 0.0 && lo <= hi && std::isfinite(hi))) {
+      return Error{fmt::format("baseline {} {}-{} is not 0 < low <= high", what, lo, hi)};
+    }
+  }
+  if (s.band_id < 0 || s.band_id >= kMaxOperatingBands) {
+    return Error{
+        fmt::format("operating band id {} is not in [0, {})", s.band_id, kMaxOperatingBands)};
+  }
+  OperatingBand b;
+  b.id = s.band_id;
+  b.indicator_baseline.emplace(std::move(indicator.value()));
+  b.residual_variance_healthy.mean = s.residual_variance_healthy;
+  b.residual_variance_healthy.blocks = s.residual_variance_blocks;
+  b.criterion_healthy.mean = s.criterion_healthy;
+  b.criterion_healthy.blocks = s.criterion_blocks;
+  b.baseline_speed_lo_hz = s.baseline_speed_lo_hz;
+  b.baseline_speed_hi_hz = s.baseline_speed_hi_hz;
+  b.baseline_load_lo = s.baseline_load_lo;
+  b.baseline_load_hi = s.baseline_load_hi;
+  b.baseline_load_partial = s.baseline_load_partial;
+  return b;
+}
+
+}  // namespace
+
 LearnedState BlockProcessor::ExportLearnedState() const {
   const MachineState& st = impl_->state;
   LearnedState s;
+  static_cast<LearnedBand&>(s) = ExportBand(st.band);
   s.fingerprint = impl_->fingerprint;
   s.learning = st.learning;
-  s.indicator_baseline = st.indicator_baseline->State();
   HealthyBaselineState envelope = st.envelope_baseline->State();
   if (!envelope.configured) s.envelope_baseline = std::move(envelope);
-  s.residual_variance_healthy = st.residual_variance_healthy.mean;
-  s.residual_variance_blocks = st.residual_variance_healthy.blocks;
-  s.criterion_healthy = st.criterion_healthy.mean;
-  s.criterion_blocks = st.criterion_healthy.blocks;
   s.alarm = st.alarm->State();
   s.group_excess_sum = st.group_excess_sum;
   s.mesh_evidence_sum = st.mesh_evidence_sum;
   s.order_tracking_mode = st.order_tracking_mode;
-  s.baseline_speed_lo_hz = st.baseline_speed_lo_hz;
-  s.baseline_speed_hi_hz = st.baseline_speed_hi_hz;
-  s.baseline_load_lo = st.baseline_load_lo;
-  s.baseline_load_hi = st.baseline_load_hi;
-  s.baseline_load_partial = st.baseline_load_partial;
+  for (std::size_t i = 0; i < st.parked_count; ++i) {
+    s.parked_bands.push_back(ExportBand(st.parked_bands[i]));
+  }
   s.baseline_epoch = impl_->machine.setup.options.baseline_epoch;
   return s;
 }
@@ -562,27 +638,34 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
     if (want == got) return Status::Ok();
     return Error{fmt::format("{} has {} entries, this machine {}", what, got, want)};
   };
-  for (Status st : {size_check("residual_variance_healthy",
-                               now.residual_variance_healthy.mean.size(),
-                               s.residual_variance_healthy.size()),
-                    size_check("criterion_healthy", now.criterion_healthy.mean.size(),
-                               s.criterion_healthy.size()),
-                    size_check("group_excess_sum", now.group_excess_sum.size(),
-                               s.group_excess_sum.size()),
-                    // Empty in states saved before the mesh evidence accumulated.
-                    s.mesh_evidence_sum.empty()
-                        ? Status::Ok()
-                        : size_check("mesh_evidence_sum", now.mesh_evidence_sum.size(),
-                                     s.mesh_evidence_sum.size()),
-                    size_check("indicator_baseline", now.indicator_baseline->indicators(),
-                               static_cast<std::size_t>(s.indicator_baseline.indicators))}) {
+  for (Status st :
+       {size_check("group_excess_sum", now.group_excess_sum.size(), s.group_excess_sum.size()),
+        // Empty in states saved before the mesh evidence accumulated.
+        s.mesh_evidence_sum.empty() ? Status::Ok()
+                                    : size_check("mesh_evidence_sum", now.mesh_evidence_sum.size(),
+                                                 s.mesh_evidence_sum.size())}) {
     if (!st) return st;
   }
-  auto indicator = RobustBaseline::FromState(s.indicator_baseline);
-  if (!indicator) return Error{indicator.error()};
-  // Configuration, not state (the fingerprint vouches that it is the one it learned under).
-  indicator->set_tail_z(now.indicator_baseline->tail_z());
-  indicator->set_floor_power(now.indicator_baseline->floor_power());
+  auto in_use = ImportBand(s, now.band);
+  if (!in_use) return Error{in_use.error()};
+  if (s.learning == in_use->learned()) {
+    return Error{"learning flag contradicts the indicator baseline"};
+  }
+  // The band in use first, the parked ones after it, learned bands before learning ones: a
+  // configuration with fewer bands than the state keeps the learned ones it has room for
+  // (parked_bands_dropped() counts the others), and a machine that was learning an added band
+  // resumes judging at a learned one.
+  std::vector<OperatingBand> bands;
+  bands.push_back(std::move(in_use.value()));
+  for (const LearnedBand& saved : s.parked_bands) {
+    auto b = ImportBand(saved, now.band);
+    if (!b) return Error{fmt::format("operating band {}: {}", saved.band_id, b.error())};
+    bands.push_back(std::move(b.value()));
+  }
+  std::stable_partition(bands.begin(), bands.end(),
+                        [](const OperatingBand& b) { return b.learned(); });
+  const std::size_t keep = std::min(bands.size(), now.parked_bands.size() + 1);
+  const std::size_t dropped = bands.size() - keep;
   std::optional<HealthyBaseline> envelope;
   if (s.envelope_baseline) {
     auto e = HealthyBaseline::FromState(*s.envelope_baseline);
@@ -600,41 +683,31 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
     if (!a) return Error{a.error()};
     alarm.emplace(std::move(a.value()));
   }
-  for (const auto* v : {&s.residual_variance_healthy, &s.criterion_healthy, &s.group_excess_sum,
-                        &s.mesh_evidence_sum}) {
+  for (const auto* v : {&s.group_excess_sum, &s.mesh_evidence_sum}) {
     for (double x : *v) {
-      if (!std::isfinite(x)) return Error{"a healthy level or evidence sum is not finite"};
+      if (!std::isfinite(x)) return Error{"an evidence sum is not finite"};
     }
   }
-  if (s.residual_variance_blocks < 0 || s.criterion_blocks < 0) {
-    return Error{"negative block counts"};
-  }
-  // Each learned range: both 0 (none, or saved before it existed) or 0 < lo <= hi, finite.
-  for (const auto& [what, lo, hi] :
-       {std::tuple{"speed range", s.baseline_speed_lo_hz, s.baseline_speed_hi_hz},
-        std::tuple{"load range", s.baseline_load_lo, s.baseline_load_hi}}) {
-    if (!(lo == 0.0 && hi == 0.0) && !(lo > 0.0 && lo <= hi && std::isfinite(hi))) {
-      return Error{fmt::format("baseline {} {}-{} is not 0 < low <= high", what, lo, hi)};
-    }
-  }
-  if (s.learning == indicator->learned()) {
-    return Error{"learning flag contradicts the indicator baseline"};
-  }
-  // Everything checked: commit.
+  // Everything checked: commit. The parked slots keep their size (no allocation later).
   MachineState& st = impl_->state;
-  st.indicator_baseline.emplace(std::move(indicator.value()));
+  for (std::size_t i = 0; i < st.parked_bands.size(); ++i) {
+    if (i + 1 < keep) {
+      st.parked_bands[i] = std::move(bands[i + 1]);
+    } else {
+      st.parked_bands[i].Reset();
+    }
+  }
+  st.parked_count = keep - 1;
+  impl_->parked_bands_dropped = dropped;
+  st.band = std::move(bands.front());
   if (envelope) st.envelope_baseline.emplace(std::move(*envelope));
   if (alarm) {
     st.alarm.emplace(std::move(*alarm));
   } else {
     st.alarm->Reset();
   }
-  st.learning = s.learning;
+  st.learning = !st.band.learned();
   st.previous_scored = false;  // a restored machine starts a new two-block window
-  st.residual_variance_healthy.mean = s.residual_variance_healthy;
-  st.residual_variance_healthy.blocks = s.residual_variance_blocks;
-  st.criterion_healthy.mean = s.criterion_healthy;
-  st.criterion_healthy.blocks = s.criterion_blocks;
   st.group_excess_sum = s.group_excess_sum;
   if (s.mesh_evidence_sum.empty()) {
     std::fill(st.mesh_evidence_sum.begin(), st.mesh_evidence_sum.end(), 0.0);
@@ -642,12 +715,11 @@ Status BlockProcessor::ImportLearnedState(const LearnedState& s) {
     st.mesh_evidence_sum = s.mesh_evidence_sum;
   }
   st.order_tracking_mode = s.order_tracking_mode;
-  st.baseline_speed_lo_hz = s.baseline_speed_lo_hz;
-  st.baseline_speed_hi_hz = s.baseline_speed_hi_hz;
-  st.baseline_load_lo = s.baseline_load_lo;
-  st.baseline_load_hi = s.baseline_load_hi;
-  st.baseline_load_partial = s.baseline_load_partial;
   return Status::Ok();
+}
+
+std::size_t BlockProcessor::operating_bands_dropped() const noexcept {
+  return impl_->parked_bands_dropped;
 }
 
 std::uint64_t BlockProcessor::learned_state_fingerprint() const noexcept {

@@ -174,6 +174,14 @@ struct AnalysisOptions {
   // them (`gearpath evaluate --match /none/ --load-step L --no-load-reading`); the default is
   // the largest step that raised none. 1 judges every load. Blocks without a load are judged.
   double load_tolerance = 0.1;
+  // Operating bands (docs/diagnosis.md section 10): how many baselines, each at its own band of
+  // speed and load, the machine may learn, in [1, kMaxOperatingBands]. 1: the first baseline
+  // only, and a block outside its speeds or loads is not judged. More: such a block is judged
+  // against the band that learned at its speed and load; when none did and no fault is
+  // suspected, a new band learns there (the verdict holds meanwhile). Why not by
+  // default: a band learned at a new operating point while a fault develops there takes the
+  // fault for healthy, so a plant turns it on where its operating points are known to recur.
+  int operating_bands = 1;
   // A label of the healthy baseline (baseline.epoch): part of the learned state's fingerprint
   // when not empty, so that changing it (after maintenance: a gear replaced) makes this machine
   // refuse the baseline it has and learn a new one, on a reload as at a start, while every other
@@ -270,9 +278,11 @@ enum class NotJudgedCause : std::uint8_t {
   kSpeedUnknown,  // no input speed (not in the block, not configured, nothing to track)
   kSpeedOutside,  // the speed is outside the baseline's range (speed_tolerance)
   kLoadOutside,   // the load is outside the baseline's range (load_tolerance)
+  // A new operating band learns its baseline at this block's speed and load (operating_bands)
+  kLearningBand,
 };
-inline constexpr NotJudgedCause kLastNotJudgedCause = NotJudgedCause::kLoadOutside;
-// "speed_unknown", "speed_outside", "load_outside" ("none" for kNone).
+inline constexpr NotJudgedCause kLastNotJudgedCause = NotJudgedCause::kLearningBand;
+// "speed_unknown", "speed_outside", "load_outside", "learning_band" ("none" for kNone).
 std::string_view ToString(NotJudgedCause cause) noexcept;
 
 // The block's anomaly score and the limits it was judged by.
@@ -295,6 +305,10 @@ struct BlockScore {
   double baseline_load_lo = 0.0;      // loads the baseline was learned at (0 while learning,
   double baseline_load_hi = 0.0;      // or when a baseline block carried no load)
   NotJudgedCause not_judged = NotJudgedCause::kNone;
+  // The operating band in force (AnalysisOptions::operating_bands): its id (0 the machine's
+  // first baseline, then in order of creation) and how many bands the machine has.
+  int operating_band = 0;
+  int operating_bands = 1;
 };
 
 struct BlockRegularisation {
@@ -444,7 +458,10 @@ class BlockProcessor {
   // Resumes from `state`, or refuses and changes nothing: a fingerprint that is not this
   // processor's (the message says the baseline measured something else) or an inconsistent
   // part (the message names it). Alarm options that differ restart the alarm model only.
+  // A state with more operating bands than AnalysisOptions::operating_bands allows keeps its
+  // learned bands first, as many as fit; operating_bands_dropped() counts the rest.
   Status ImportLearnedState(const LearnedState& state);
+  std::size_t operating_bands_dropped() const noexcept;
   std::uint64_t learned_state_fingerprint() const noexcept;
 
   // Names of the entries of BlockConditionIndicators::value of rate group `group` (the

@@ -456,7 +456,7 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
         continue;
       }
       const double na4_reference =
-          st.residual_variance_healthy.blocks > 0 ? st.residual_variance_healthy.mean[slot] : 0.0;
+          st.band.residual_variance_healthy.blocks > 0 ? st.band.residual_variance_healthy.mean[slot] : 0.0;
       if (!cw.indicators
                ->Compute(cw.record.tsa(), cw.record.orders(), rg.mesh_orders, na4_reference,
                          cw.values, spread)

@@ -44,15 +44,15 @@ RejectReason DominantPathStage::Process(StageContext& ctx) noexcept {
 
   // Excess over the healthy level (see AnalysisOptions::criterion_over_baseline).
   if (o.criterion_over_baseline && st.learning && have_speed) {
-    st.criterion_healthy.Add(w.path_criterion);
-  } else if (o.criterion_over_baseline && st.criterion_healthy.blocks > 0) {
+    st.band.criterion_healthy.Add(w.path_criterion);
+  } else if (o.criterion_over_baseline && st.band.criterion_healthy.blocks > 0) {
     bool any = false;
     for (std::size_t p = 0; p < m.paths; ++p) {
-      any = any || w.path_criterion[p] > st.criterion_healthy.mean[p];
+      any = any || w.path_criterion[p] > st.band.criterion_healthy.mean[p];
     }
     if (any) {
       for (std::size_t p = 0; p < m.paths; ++p) {
-        w.path_criterion[p] = std::max(0.0, w.path_criterion[p] - st.criterion_healthy.mean[p]);
+        w.path_criterion[p] = std::max(0.0, w.path_criterion[p] - st.band.criterion_healthy.mean[p]);
       }
     }
   }

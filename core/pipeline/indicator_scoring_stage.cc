@@ -8,45 +8,38 @@
 #include "core/pipeline/block_workspace.h"
 #include "core/pipeline/machine_context.h"
 #include "core/pipeline/machine_state.h"
+#include "core/pipeline/operating_band_stage.h"
 
 namespace gearpath {
 namespace {
 
-// `value` within the learned [lo, hi] widened by `tolerance` either way; no range (hi 0: a state
-// saved before it existed, or a baseline that learned none) judges everything.
-bool WithinLearnedRange(double value, double lo, double hi, double tolerance) noexcept {
-  if (!(hi > 0.0)) return true;
-  return value >= lo * (1.0 - tolerance) && value <= hi * (1.0 + tolerance);
-}
-
-// The baseline holds the response at the speeds it learned at: the housing's transfer moves
-// with the mesh frequency, so a block at another speed is not comparable with it.
-bool WithinBaselineSpeeds(const StageContext& ctx) noexcept {
-  const MachineState& st = ctx.state;
-  return WithinLearnedRange(ctx.work.speed_hz, st.baseline_speed_lo_hz, st.baseline_speed_hi_hz,
-                            ctx.machine.setup.options.speed_tolerance);
-}
-
-// Likewise the level: amplitudes and energies grow with the load. A block without a load is
-// judged.
-bool WithinBaselineLoads(const StageContext& ctx) noexcept {
-  const MachineState& st = ctx.state;
-  const double load = ctx.block.load;
-  return !(load > 0.0) || WithinLearnedRange(load, st.baseline_load_lo, st.baseline_load_hi,
-                                             ctx.machine.setup.options.load_tolerance);
+// The band in force holds the response at the speeds and loads it learned at: the housing's
+// transfer moves with the mesh frequency and the amplitudes and energies grow with the load, so
+// a block elsewhere is not comparable with it (a block without a load is judged at any load).
+NotJudgedCause OutsideBand(const StageContext& ctx) noexcept {
+  const OperatingBand& b = ctx.state.band;
+  const AnalysisOptions& o = ctx.machine.setup.options;
+  const double speed = ctx.work.speed_hz;
+  if (!BandHolds(b, speed, 0.0, o.speed_tolerance, o.load_tolerance)) {
+    return NotJudgedCause::kSpeedOutside;
+  }
+  if (!BandHolds(b, speed, ctx.block.load, o.speed_tolerance, o.load_tolerance)) {
+    return NotJudgedCause::kLoadOutside;
+  }
+  return NotJudgedCause::kNone;
 }
 
 // A baseline block's load into the learned range; one block without a load voids the range.
 void LearnLoad(MachineState& st, double load, bool first) noexcept {
-  if (first) st.baseline_load_partial = false;
-  if (st.baseline_load_partial) return;
+  if (first) st.band.baseline_load_partial = false;
+  if (st.band.baseline_load_partial) return;
   if (!(load > 0.0)) {
-    st.baseline_load_partial = true;
-    st.baseline_load_lo = st.baseline_load_hi = 0.0;
+    st.band.baseline_load_partial = true;
+    st.band.baseline_load_lo = st.band.baseline_load_hi = 0.0;
     return;
   }
-  st.baseline_load_lo = first ? load : std::min(st.baseline_load_lo, load);
-  st.baseline_load_hi = first ? load : std::max(st.baseline_load_hi, load);
+  st.band.baseline_load_lo = first ? load : std::min(st.band.baseline_load_lo, load);
+  st.band.baseline_load_hi = first ? load : std::max(st.band.baseline_load_hi, load);
 }
 
 }  // namespace
@@ -69,13 +62,16 @@ void IndicatorScoringStage::Learn(StageContext& ctx) noexcept {
   if (!(w.speed_hz > 0.0)) return;
   const bool complete =
       std::all_of(w.slot_valid.begin(), w.slot_valid.end(), [](std::uint8_t v) { return v != 0; });
-  if (st.envelope_baseline && !st.envelope_baseline->learned()) st.envelope_baseline->Add(envelope_);
+  if (st.envelope_baseline && !st.envelope_baseline->learned())
+    st.envelope_baseline->Add(envelope_);
   if (!complete) return;
-  if (st.indicator_baseline->Add(w.indicators)) {
-    st.residual_variance_healthy.Add(w.slot_residual_variance);
-    const bool first = !(st.baseline_speed_hi_hz > 0.0);
-    st.baseline_speed_lo_hz = first ? w.speed_hz : std::min(st.baseline_speed_lo_hz, w.speed_hz);
-    st.baseline_speed_hi_hz = first ? w.speed_hz : std::max(st.baseline_speed_hi_hz, w.speed_hz);
+  if (st.band.indicator_baseline->Add(w.indicators)) {
+    st.band.residual_variance_healthy.Add(w.slot_residual_variance);
+    const bool first = !(st.band.baseline_speed_hi_hz > 0.0);
+    st.band.baseline_speed_lo_hz =
+        first ? w.speed_hz : std::min(st.band.baseline_speed_lo_hz, w.speed_hz);
+    st.band.baseline_speed_hi_hz =
+        first ? w.speed_hz : std::max(st.band.baseline_speed_hi_hz, w.speed_hz);
     LearnLoad(st, ctx.block.load, first);
   }
 }
@@ -87,19 +83,19 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
   std::fill(w.slot_score.begin(), w.slot_score.end(), 0.0);
   std::fill(w.group_score.begin(), w.group_score.end(), 0.0);
   BlockScore& score = ctx.out.score;
-  score.not_judged = st.learning                  ? NotJudgedCause::kNone
-                     : !(w.speed_hz > 0.0)        ? NotJudgedCause::kSpeedUnknown
-                     : !WithinBaselineSpeeds(ctx) ? NotJudgedCause::kSpeedOutside
-                     : !WithinBaselineLoads(ctx)  ? NotJudgedCause::kLoadOutside
-                                                  : NotJudgedCause::kNone;
+  // A band that learns beside learned ones is an added operating point: the verdict holds.
+  score.not_judged =
+      st.learning ? (st.parked_band_learned() ? NotJudgedCause::kLearningBand : NotJudgedCause::kNone)
+      : !(w.speed_hz > 0.0) ? NotJudgedCause::kSpeedUnknown
+                            : OutsideBand(ctx);
   if (st.learning || score.not_judged != NotJudgedCause::kNone) {
     std::fill(w.z.begin(), w.z.end(), 0.0);
     std::fill(w.excess.begin(), w.excess.end(), 0.0);
     st.previous_scored = false;
     return;
   }
-  (void)st.indicator_baseline->ZScores(w.indicators, w.z);
-  const auto median = st.indicator_baseline->median();  // log scale: every entry is logged
+  (void)st.band.indicator_baseline->ZScores(w.indicators, w.z);
+  const auto median = st.band.indicator_baseline->median();  // log scale: every entry is logged
   for (std::size_t i = 0; i < w.indicators.size(); ++i) {
     w.excess[i] = std::max(0.0, w.indicators[i] - std::exp(median[i]));
   }
@@ -127,8 +123,7 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
     if (!w.slot_valid[s]) {
       const ConditionSlot& cs = m.condition_slots[s];
       std::fill_n(w.z.begin() + static_cast<std::ptrdiff_t>(cs.offset), cs.count, 0.0);
-      std::fill_n(st.previous_z.begin() + static_cast<std::ptrdiff_t>(cs.offset),
-                  cs.count, 0.0);
+      std::fill_n(st.previous_z.begin() + static_cast<std::ptrdiff_t>(cs.offset), cs.count, 0.0);
       continue;
     }
     const ConditionSlot& cs = m.condition_slots[s];
@@ -161,8 +156,9 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
         score.score = d;
         score.indicator = m.signature_names[2 * i + k];
         score.signal = ss.forces ? "bearing forces" : "measured channels";
-        score.shaft = m.topology.shaft_names[static_cast<std::size_t>(
-            m.rate_groups[ss.group].shafts.front())];
+        score.shaft =
+            m.topology
+                .shaft_names[static_cast<std::size_t>(m.rate_groups[ss.group].shafts.front())];
       }
     }
   }
@@ -208,12 +204,14 @@ void IndicatorScoringStage::Publish(StageContext& ctx) noexcept {
   }
   out.score.limit_z = st.learning ? 0.0 : st.limit_z;
   out.score.clear_level = m.setup.options.clear_level;
-  out.score.baseline_blocks_learned = st.indicator_baseline->blocks_seen();
-  out.score.baseline_blocks_needed = st.indicator_baseline->blocks_needed();
-  out.score.baseline_speed_lo_hz = st.learning ? 0.0 : st.baseline_speed_lo_hz;
-  out.score.baseline_speed_hi_hz = st.learning ? 0.0 : st.baseline_speed_hi_hz;
-  out.score.baseline_load_lo = st.learning ? 0.0 : st.baseline_load_lo;
-  out.score.baseline_load_hi = st.learning ? 0.0 : st.baseline_load_hi;
+  out.score.baseline_blocks_learned = st.band.indicator_baseline->blocks_seen();
+  out.score.baseline_blocks_needed = st.band.indicator_baseline->blocks_needed();
+  out.score.baseline_speed_lo_hz = st.learning ? 0.0 : st.band.baseline_speed_lo_hz;
+  out.score.baseline_speed_hi_hz = st.learning ? 0.0 : st.band.baseline_speed_hi_hz;
+  out.score.baseline_load_lo = st.learning ? 0.0 : st.band.baseline_load_lo;
+  out.score.baseline_load_hi = st.learning ? 0.0 : st.band.baseline_load_hi;
+  out.score.operating_band = st.band.id;
+  out.score.operating_bands = static_cast<int>(st.parked_count) + 1;
 }
 
 RejectReason IndicatorScoringStage::Process(StageContext& ctx) noexcept {
@@ -235,7 +233,7 @@ RejectReason IndicatorScoringStage::Process(StageContext& ctx) noexcept {
   }
   Score(ctx);
   Publish(ctx);
-  st.learning = !st.indicator_baseline->learned();
+  st.learning = !st.band.indicator_baseline->learned();
   return RejectReason::kNone;
 }
 

@@ -26,30 +26,43 @@ namespace gearpath {
 
 struct MachineContext;
 
-struct LearnedState {
-  std::uint64_t fingerprint = 0;
-  bool learning = true;
+// Operating bands a machine may learn (AnalysisOptions::operating_bands): each is a baseline,
+// and every one is kept in memory and in the saved state.
+inline constexpr int kMaxOperatingBands = 16;
+
+// What one operating band learned (MachineState's OperatingBand).
+struct LearnedBand {
+  int band_id = 0;  // OperatingBand::id
   RobustBaselineState indicator_baseline;
-  std::optional<HealthyBaselineState> envelope_baseline;  // none: thresholds are configured
   std::vector<double> residual_variance_healthy;  // per condition slot (NA4's reference)
   int residual_variance_blocks = 0;
-  std::vector<double> criterion_healthy;          // per path (dominant-path criterion)
+  std::vector<double> criterion_healthy;  // per path (dominant-path criterion)
   int criterion_blocks = 0;
-  AlarmModelState alarm;
-  std::vector<double> group_excess_sum;           // per rate group (localisation evidence)
-  // Per rate group x kMaxMeshesPerShaft (MachineState::mesh_evidence_sum); empty in states
-  // saved before it existed.
-  std::vector<double> mesh_evidence_sum;
-  int order_tracking_mode = -1;                   // MachineState::order_tracking_mode
-  // Input speeds the baseline learned at (MachineState::baseline_speed_lo_hz, _hi_hz); both 0
+  // Input speeds the baseline learned at (OperatingBand::baseline_speed_lo_hz, _hi_hz); both 0
   // in states saved before they existed, which then judge every speed.
   double baseline_speed_lo_hz = 0.0;
   double baseline_speed_hi_hz = 0.0;
-  // Loads the baseline learned at (MachineState::baseline_load_lo, _hi, _partial); both 0 and
+  // Loads the baseline learned at (OperatingBand::baseline_load_lo, _hi, _partial); both 0 and
   // not partial in states saved before them, which then judge every load.
   double baseline_load_lo = 0.0;
   double baseline_load_hi = 0.0;
   bool baseline_load_partial = false;
+};
+
+// The band in use (its fields at the top, as states saved before operating bands had them)
+// and the parked bands.
+struct LearnedState : LearnedBand {
+  std::uint64_t fingerprint = 0;
+  bool learning = true;
+  std::optional<HealthyBaselineState> envelope_baseline;  // none: thresholds are configured
+  AlarmModelState alarm;
+  std::vector<double> group_excess_sum;  // per rate group (localisation evidence)
+  // Per rate group x kMaxMeshesPerShaft (MachineState::mesh_evidence_sum); empty in states
+  // saved before it existed.
+  std::vector<double> mesh_evidence_sum;
+  int order_tracking_mode = -1;  // MachineState::order_tracking_mode
+  // The other operating bands (MachineState::parked_bands); empty in states saved before them.
+  std::vector<LearnedBand> parked_bands;
   // The analysis.baseline.epoch it was learned under, so that a refusal can name the one it
   // replaces; absent in states saved before it was recorded (the fingerprint still decides).
   std::optional<std::string> baseline_epoch;

@@ -44,8 +44,8 @@ std::vector<int> Ints(const json& parent, const char* key) {
 }
 
 FaultState ParseFaultState(const std::string& name) {
-  for (FaultState s : {FaultState::kLearning, FaultState::kNoFault, FaultState::kSuspected,
-                       FaultState::kAlarm}) {
+  for (FaultState s :
+       {FaultState::kLearning, FaultState::kNoFault, FaultState::kSuspected, FaultState::kAlarm}) {
     if (ToString(s) == name) return s;
   }
   throw std::invalid_argument("alarm.state: unknown fault state \"" + name + "\"");
@@ -64,13 +64,49 @@ Status ReadRange(const json& parent, const char* key, double& lo, double& hi) {
   return Status::Ok();
 }
 
-}  // namespace
+// One band's fields from `j` (BandToJson); throws on a missing key or a wrong type.
+Status BandFromJson(const json& j, LearnedBand& s) {
+  // Absent in states written before operating bands: the first band.
+  s.band_id = j.contains("operating_band_id") ? Int(j, "operating_band_id") : 0;
+  if (s.band_id < 0) return Error{"learned state: operating_band_id: negative"};
+  const json& b = j.at("indicator_baseline");
+  RobustBaselineState& r = s.indicator_baseline;
+  r.blocks = Int(b, "blocks");
+  r.indicators = Int(b, "indicators");
+  r.count = Int(b, "count");
+  r.skipped = Int(b, "skipped");
+  r.relative_floor = b.at("relative_floor").get<double>();
+  r.absolute_floor = b.at("absolute_floor").get<double>();
+  r.log_value_floor = b.at("log_value_floor").get<double>();
+  r.median = b.at("median").get<std::vector<double>>();
+  r.scale = b.at("scale").get<std::vector<double>>();
+  r.log_transform = b.at("log_transform").get<std::vector<bool>>();
+  r.samples = b.at("samples").get<std::vector<double>>();
+  const json& rv = j.at("residual_variance_healthy");
+  s.residual_variance_healthy = rv.at("mean").get<std::vector<double>>();
+  s.residual_variance_blocks = Int(rv, "blocks");
+  const json& ch = j.at("criterion_healthy");
+  s.criterion_healthy = ch.at("mean").get<std::vector<double>>();
+  s.criterion_blocks = Int(ch, "blocks");
+  // Absent in states written before them: [0, 0], every speed and every load judged.
+  if (Status st = ReadRange(j, "baseline_speed_hz", s.baseline_speed_lo_hz, s.baseline_speed_hi_hz);
+      !st) {
+    return st;
+  }
+  if (Status st = ReadRange(j, "baseline_load", s.baseline_load_lo, s.baseline_load_hi); !st) {
+    return st;
+  }
+  if (j.contains("baseline_load_partial")) {
+    s.baseline_load_partial = j.at("baseline_load_partial").get<bool>();
+  }
+  return Status::Ok();
+}
 
-json ToJson(const LearnedState& s) {
+// One band's fields, into `j` (the state's top level for the band in use, as states saved
+// before operating bands had them; an entry of "operating_bands" for a parked one).
+void BandToJson(const LearnedBand& s, json& j) {
   const RobustBaselineState& b = s.indicator_baseline;
-  json j;
-  j["fingerprint"] = fmt::format("{:016x}", s.fingerprint);
-  j["learning"] = s.learning;
+  j["operating_band_id"] = s.band_id;
   j["indicator_baseline"] = {
       {"blocks", b.blocks},
       {"indicators", b.indicators},
@@ -84,17 +120,32 @@ json ToJson(const LearnedState& s) {
       {"log_transform", b.log_transform},
       {"samples", b.samples},
   };
+  j["residual_variance_healthy"] = Mean(s.residual_variance_healthy, s.residual_variance_blocks);
+  j["criterion_healthy"] = Mean(s.criterion_healthy, s.criterion_blocks);
+  j["baseline_speed_hz"] = {s.baseline_speed_lo_hz, s.baseline_speed_hi_hz};
+  j["baseline_load"] = {s.baseline_load_lo, s.baseline_load_hi};
+  j["baseline_load_partial"] = s.baseline_load_partial;
+}
+
+}  // namespace
+
+json ToJson(const LearnedState& s) {
+  json j;
+  j["fingerprint"] = fmt::format("{:016x}", s.fingerprint);
+  j["learning"] = s.learning;
+  BandToJson(s, j);
   if (s.envelope_baseline) {
     const HealthyBaselineState& e = *s.envelope_baseline;
-    j["envelope_baseline"] = {{"blocks", e.options.blocks}, {"k_sigma", e.options.k_sigma},
-                              {"min_margin", e.options.min_margin}, {"floor", e.options.floor},
-                              {"count", e.count},         {"mean", e.mean},
+    j["envelope_baseline"] = {{"blocks", e.options.blocks},
+                              {"k_sigma", e.options.k_sigma},
+                              {"min_margin", e.options.min_margin},
+                              {"floor", e.options.floor},
+                              {"count", e.count},
+                              {"mean", e.mean},
                               {"m2", e.m2}};
   } else {
     j["envelope_baseline"] = nullptr;
   }
-  j["residual_variance_healthy"] = Mean(s.residual_variance_healthy, s.residual_variance_blocks);
-  j["criterion_healthy"] = Mean(s.criterion_healthy, s.criterion_blocks);
   const AlarmModelState& a = s.alarm;
   j["alarm"] = {{"n", a.options.n},
                 {"suspect_k", a.options.suspect_k},
@@ -109,9 +160,13 @@ json ToJson(const LearnedState& s) {
   j["group_excess_sum"] = s.group_excess_sum;
   j["mesh_evidence_sum"] = s.mesh_evidence_sum;
   j["order_tracking_mode"] = s.order_tracking_mode;
-  j["baseline_speed_hz"] = {s.baseline_speed_lo_hz, s.baseline_speed_hi_hz};
-  j["baseline_load"] = {s.baseline_load_lo, s.baseline_load_hi};
-  j["baseline_load_partial"] = s.baseline_load_partial;
+  json parked = json::array();
+  for (const LearnedBand& band : s.parked_bands) {
+    json e;
+    BandToJson(band, e);
+    parked.push_back(std::move(e));
+  }
+  j["operating_bands"] = std::move(parked);
   if (s.baseline_epoch) j["baseline_epoch"] = *s.baseline_epoch;
   return j;
 }
@@ -126,19 +181,7 @@ Result<LearnedState> LearnedStateFromJson(const json& j) {
       return Error{"fingerprint: expected 16 hex digits, got \"" + fp + "\""};
     }
     s.learning = j.at("learning").get<bool>();
-    const json& b = j.at("indicator_baseline");
-    RobustBaselineState& r = s.indicator_baseline;
-    r.blocks = Int(b, "blocks");
-    r.indicators = Int(b, "indicators");
-    r.count = Int(b, "count");
-    r.skipped = Int(b, "skipped");
-    r.relative_floor = b.at("relative_floor").get<double>();
-    r.absolute_floor = b.at("absolute_floor").get<double>();
-    r.log_value_floor = b.at("log_value_floor").get<double>();
-    r.median = b.at("median").get<std::vector<double>>();
-    r.scale = b.at("scale").get<std::vector<double>>();
-    r.log_transform = b.at("log_transform").get<std::vector<bool>>();
-    r.samples = b.at("samples").get<std::vector<double>>();
+    if (Status st = BandFromJson(j, s); !st) return Error{st.error()};
     if (const json& e = j.at("envelope_baseline"); !e.is_null()) {
       HealthyBaselineState h;
       h.options.blocks = Int(e, "blocks");
@@ -150,12 +193,6 @@ Result<LearnedState> LearnedStateFromJson(const json& j) {
       h.m2 = e.at("m2").get<std::vector<double>>();
       s.envelope_baseline = std::move(h);
     }
-    const json& rv = j.at("residual_variance_healthy");
-    s.residual_variance_healthy = rv.at("mean").get<std::vector<double>>();
-    s.residual_variance_blocks = Int(rv, "blocks");
-    const json& ch = j.at("criterion_healthy");
-    s.criterion_healthy = ch.at("mean").get<std::vector<double>>();
-    s.criterion_blocks = Int(ch, "blocks");
     const json& a = j.at("alarm");
     s.alarm.options.n = Int(a, "n");
     s.alarm.options.suspect_k = Int(a, "suspect_k");
@@ -182,17 +219,17 @@ Result<LearnedState> LearnedStateFromJson(const json& j) {
       return Error{"learned state: order_tracking_mode: " + std::to_string(s.order_tracking_mode) +
                    " is not -1, 0 or 1"};
     }
-    // Absent in states written before them: [0, 0], every speed and every load judged.
-    if (Status st = ReadRange(j, "baseline_speed_hz", s.baseline_speed_lo_hz,
-                              s.baseline_speed_hi_hz);
-        !st) {
-      return Error{st.error()};
-    }
-    if (Status st = ReadRange(j, "baseline_load", s.baseline_load_lo, s.baseline_load_hi); !st) {
-      return Error{st.error()};
-    }
-    if (j.contains("baseline_load_partial")) {
-      s.baseline_load_partial = j.at("baseline_load_partial").get<bool>();
+    // Absent in states written before operating bands: the band in use is the only one.
+    if (j.contains("operating_bands")) {
+      const json& bands = j.at("operating_bands");
+      if (!bands.is_array()) return Error{"learned state: operating_bands: not an array"};
+      for (const json& e : bands) {
+        LearnedBand band;
+        if (Status st = BandFromJson(e, band); !st) {
+          return Error{st.error() + " (in operating_bands)"};
+        }
+        s.parked_bands.push_back(std::move(band));
+      }
     }
     // Absent in states written before it was recorded.
     if (j.contains("baseline_epoch")) {

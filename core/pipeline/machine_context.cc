@@ -72,6 +72,10 @@ Result<MachineContext> MachineContext::Create(MachineSetup setup) {
     return Error{at +
                  fmt::format("options.load_tolerance must be in [0, 1], got {}", o.load_tolerance)};
   }
+  if (o.operating_bands < 1 || o.operating_bands > kMaxOperatingBands) {
+    return Error{at + fmt::format("options.operating_bands must be in [1, {}], got {}",
+                                  kMaxOperatingBands, o.operating_bands)};
+  }
   if (Status st = ValidateBaselineEpoch(o.baseline_epoch); !st) {
     return Error{at + "options.baseline_epoch " + st.error()};
   }

@@ -99,7 +99,7 @@ TEST(MetricsCatalogue, BlockCountersPerMachineAndEveryRejectReasonFromZero) {
       Has(text, "gearpath_blocks_not_judged_total{machine=\"a\",cause=\"speed_outside\"} 0"));
   EXPECT_TRUE(
       Has(text, "gearpath_blocks_not_judged_total{machine=\"b\",cause=\"speed_unknown\"} 0"));
-  EXPECT_EQ(CountLinesStartingWith(text, "gearpath_blocks_not_judged_total{machine=\"b\""), 3u);
+  EXPECT_EQ(CountLinesStartingWith(text, "gearpath_blocks_not_judged_total{machine=\"b\""), 4u);
   // The 15 validation reasons and queue_full, per machine.
   EXPECT_EQ(CountLinesStartingWith(text, "gearpath_blocks_rejected_total{machine=\"a\""), 16u);
 }

@@ -151,7 +151,7 @@ TEST_F(MachineStateStoreTest, NotJudgedCountsAreOptionalButMustBeCounts) {
   older["counters"].erase("not_judged");
   auto loaded = load_with(older);
   ASSERT_TRUE(loaded.ok()) << loaded.error();
-  EXPECT_EQ((*loaded)->counters.not_judged, (std::array<std::uint64_t, 4>{}));
+  EXPECT_EQ((*loaded)->counters.not_judged, (decltype((*loaded)->counters.not_judged){}));
   auto later = good;
   later["counters"]["not_judged"]["torque_sensor_failed"] = 9;
   loaded = load_with(later);

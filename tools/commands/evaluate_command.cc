@@ -47,6 +47,8 @@ struct EvaluateArgs {
   double load_step = 0.0;
   bool no_load_reading = false;
   double speed_tolerance = -1.0;
+  int operating_bands = 1;
+  int step_learning_blocks = 0;
 };
 
 // One JSON line per processed block: what the verdict stood on (docs/evaluation.md).
@@ -148,6 +150,12 @@ int RunEvaluate(const EvaluateArgs& args) {
   if (args.load_step != 0.0) {
     matrix_label += fmt::format(", evaluation blocks at {:+g} % load", 100.0 * args.load_step);
   }
+  if (args.step_learning_blocks > 0) {
+    matrix_label += fmt::format(", {} healthy blocks at the step first", args.step_learning_blocks);
+  }
+  if (args.operating_bands > 1) {
+    matrix_label += fmt::format(", {} operating bands", args.operating_bands);
+  }
   if (args.no_load_reading) matrix_label += ", blocks without a load reading";
   if (args.speed_tolerance >= 0.0) {
     matrix_label += fmt::format(", speed tolerance {:g}", args.speed_tolerance);
@@ -179,6 +187,8 @@ int RunEvaluate(const EvaluateArgs& args) {
   runner.load_step = args.load_step;
   runner.load_reading = !args.no_load_reading;
   runner.speed_tolerance = args.speed_tolerance;
+  runner.operating_bands = args.operating_bands;
+  runner.step_learning_blocks = args.step_learning_blocks;
   std::ofstream dump;
   std::mutex dump_mutex;
   if (!args.dump_blocks_path.empty()) {
@@ -294,6 +304,15 @@ void AddEvaluateCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--no-load-reading", args->no_load_reading,
                 "send the blocks without their load (by default each carries it, relative to "
                 "the scenario's, so the machines judge only the loads they learned at)");
+  cmd->add_option("--operating-bands", args->operating_bands,
+                  "run the machines with baseline.operating_bands set to this (default 1: one "
+                  "baseline; more: a baseline per band of speed and load)")
+      ->check(CLI::Range(1, kMaxOperatingBands));
+  cmd->add_option("--step-learning-blocks", args->step_learning_blocks,
+                  "with --speed-step or --load-step: this many healthy blocks at the new speed "
+                  "and load before the evaluation blocks (where a machine with operating bands "
+                  "learns one)")
+      ->check(CLI::Range(0, 1000));
   cmd->add_option("--speed-tolerance", args->speed_tolerance,
                   "run the machines with baseline.speed_tolerance set to this (default: the "
                   "daemon's; 1 judges every speed)")

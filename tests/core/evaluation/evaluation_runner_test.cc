@@ -194,6 +194,37 @@ TEST(EvaluationRunner, AHealthyMachineWhoseLoadRisesATenthIsNotFlagged) {
   }
 }
 
+// Operating bands: the machine learns its baseline at one load, then runs 50 % above it, where
+// (above) one baseline either flags the healthy machine (judged at every load) or judges
+// nothing. With two bands it learns a band there from healthy blocks first; then the healthy
+// machine is judged and not flagged, and a tooth fault at that load is found.
+TEST(EvaluationRunner, AMachineWithOperatingBandsLearnsANewLoadAndJudgesThere) {
+  RunnerOptions options;
+  options.load_step = 0.5;
+  options.step_learning_blocks = kBaselineBlocks;
+  options.operating_bands = 2;
+  const Scenario modal_pulse =
+      testing::ScenarioOf(PlantFamily::kModalHousing, TrainVariant::kTable1,
+                          PlantFaultKind::kTePulse, "G1", 450.0, 0.10, ChannelSet::kSeats,
+                          /*unmodelled=*/false);
+  const ScenarioOutcome healthy = RunScenario(HealthyModalHousing(), options);
+  ASSERT_TRUE(healthy.error.empty()) << healthy.error;
+  EXPECT_EQ(healthy.score.learning_blocks, 0) << "judged";
+  EXPECT_EQ(healthy.score.false_alarm_blocks, 0);
+  for (const Scenario& s : {TePulseOnG1(), modal_pulse}) {
+    const ScenarioOutcome faulty = RunScenario(s, options);
+    ASSERT_TRUE(faulty.error.empty()) << faulty.error;
+    EXPECT_TRUE(faulty.score.detected) << s.Key();
+    // One band: the faulty blocks at the new load are not judged.
+    RunnerOptions one_band = options;
+    one_band.operating_bands = 1;
+    const ScenarioOutcome blind = RunScenario(s, one_band);
+    ASSERT_TRUE(blind.error.empty()) << blind.error;
+    EXPECT_FALSE(blind.score.detected) << s.Key();
+    EXPECT_EQ(blind.score.alarmed_blocks, 0) << s.Key();
+  }
+}
+
 TEST(EvaluationRunner, ReportsAScenarioThatCannotRun) {
   Scenario s = TePulseOnG1();
   s.gear = "G7";

@@ -152,6 +152,37 @@ TEST(BlockProcessorTest, AllocatesNothingOnceTheBlockShapeIsConfigured) {
   EXPECT_EQ(after - before, 0);
 }
 
+// Operating bands (operating_band_stage.h): a new band's start and every swap between bands
+// take slots made with the processor, so neither allocates.
+TEST(BlockProcessorTest, AllocatesNothingToStartOrSwitchAnOperatingBand) {
+  MachineSetup setup = MakeSetup(Table1Machine());
+  setup.options.operating_bands = 2;
+  auto p = BlockProcessor::Create(setup);
+  ASSERT_TRUE(p.ok()) << p.error();
+  GearboxSimulator sim = MakeSimulator(Table1Machine(), FaultType::kNone, "", 5);
+  AccelBlock block;
+  BlockResult r;
+  std::uint64_t seq = 0;
+  const auto run = [&](double load) {
+    sim.NextBlock(block);
+    block.sequence = seq++;
+    block.load = load;
+    const long before = g_allocations.load();
+    EXPECT_TRUE(p->Process(block.view(), r).accepted());
+    return g_allocations.load() - before;
+  };
+  for (int i = 0; i < kBaselineBlocks + 1; ++i) run(100.0);
+  EXPECT_EQ(r.score.operating_bands, 1);
+  EXPECT_EQ(run(200.0), 0) << "a new band";
+  EXPECT_EQ(r.score.not_judged, NotJudgedCause::kLearningBand);
+  EXPECT_EQ(r.score.operating_bands, 2);
+  EXPECT_EQ(run(100.0), 0) << "back to the first band";
+  EXPECT_EQ(r.score.operating_band, 0);
+  EXPECT_TRUE(r.score.judged);
+  EXPECT_EQ(run(200.0), 0) << "on to the learning band";
+  EXPECT_EQ(r.score.operating_band, 1);
+}
+
 // Prepare() does all of a shape's configuring (what the daemon runs at load, before READY=1):
 // a machine's very first block after it allocates nothing either, given a result that has been
 // filled before (a BlockResult sizes its own vectors on its first use, by any processor of the

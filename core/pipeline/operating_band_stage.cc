@@ -1,0 +1,86 @@
+#include "core/pipeline/operating_band_stage.h"
+
+#include <utility>
+
+#include "core/pipeline/block_workspace.h"
+#include "core/pipeline/machine_context.h"
+#include "core/pipeline/machine_state.h"
+
+namespace gearpath {
+namespace {
+
+bool WithinRange(double value, double lo, double hi, double tolerance) noexcept {
+  if (!(hi > 0.0)) return true;
+  return value >= lo * (1.0 - tolerance) && value <= hi * (1.0 + tolerance);
+}
+
+}  // namespace
+
+bool BandHolds(const OperatingBand& band, double speed_hz, double load, double speed_tolerance,
+               double load_tolerance) noexcept {
+  return WithinRange(speed_hz, band.baseline_speed_lo_hz, band.baseline_speed_hi_hz,
+                     speed_tolerance) &&
+         (!(load > 0.0) ||
+          WithinRange(load, band.baseline_load_lo, band.baseline_load_hi, load_tolerance));
+}
+
+Status OperatingBandStage::Configure(const MachineContext&, BlockWorkspace&) {
+  return Status::Ok();
+}
+
+RejectReason OperatingBandStage::Process(StageContext& ctx) noexcept {
+  MachineState& st = ctx.state;
+  const AnalysisOptions& o = ctx.machine.setup.options;
+  const double speed = ctx.work.speed_hz;
+  const double load = ctx.block.load;
+  // One band, no speed (nothing is judged), or the machine's first baseline still learning
+  // (it learns from every block, as with one band): nothing to choose.
+  if (st.parked_bands.empty() || !(speed > 0.0) || !st.any_band_learned())
+    return RejectReason::kNone;
+  const auto holds = [&](const OperatingBand& b) {
+    return BandHolds(b, speed, load, o.speed_tolerance, o.load_tolerance);
+  };
+  if (holds(st.band)) return RejectReason::kNone;
+  const auto make_current = [&st](OperatingBand& b) {
+    std::swap(st.band, b);
+    st.learning = !st.band.learned();
+    st.previous_scored = false;  // the two-block score does not span bands
+  };
+  std::size_t learning_slot = st.parked_count;
+  for (std::size_t i = 0; i < st.parked_count; ++i) {
+    OperatingBand& b = st.parked_bands[i];
+    if (!b.learned()) {
+      learning_slot = i;
+      continue;
+    }
+    if (holds(b)) {
+      make_current(b);
+      return RejectReason::kNone;
+    }
+  }
+  // No learned band holds the block: the parked learning band goes on when it holds it.
+  if (learning_slot < st.parked_count && holds(st.parked_bands[learning_slot])) {
+    make_current(st.parked_bands[learning_slot]);
+    return RejectReason::kNone;
+  }
+  // A new band (or a restart of the learning one) never learns while a fault is suspected.
+  const FaultState state = st.alarm->status().state;
+  if (state == FaultState::kSuspected || state == FaultState::kAlarm) return RejectReason::kNone;
+  if (!st.band.learned()) {  // the learning band is in force: it restarts here
+    st.band.Reset();
+    return RejectReason::kNone;
+  }
+  if (learning_slot < st.parked_count) {  // the learning band is parked: in force, restarted
+    make_current(st.parked_bands[learning_slot]);
+    st.band.Reset();
+    return RejectReason::kNone;
+  }
+  if (st.parked_count == st.parked_bands.size()) return RejectReason::kNone;  // all taken
+  OperatingBand& fresh = st.parked_bands[st.parked_count++];
+  fresh.Reset();
+  fresh.id = static_cast<int>(st.parked_count);
+  make_current(fresh);
+  return RejectReason::kNone;
+}
+
+}  // namespace gearpath
