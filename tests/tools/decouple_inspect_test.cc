@@ -361,6 +361,15 @@ TEST_F(DecoupleInspect, InspectShowsWhatAMachineStateFileWouldResume) {
   learned["baseline_speed_hz"] = {7.5, 7.6};
   learned["baseline_load"] = {96.0, 104.0};
   learned["baseline_load_partial"] = false;
+  // A second operating band, learned at 140-160 (the band in use's baseline, copied).
+  nlohmann::json parked = {{"operating_band_id", 1},
+                           {"indicator_baseline", learned["indicator_baseline"]},
+                           {"residual_variance_healthy", learned["residual_variance_healthy"]},
+                           {"criterion_healthy", learned["criterion_healthy"]},
+                           {"baseline_speed_hz", {7.5, 7.6}},
+                           {"baseline_load", {140.0, 160.0}},
+                           {"baseline_load_partial", false}};
+  learned["operating_bands"] = nlohmann::json::array({parked});
   std::ofstream(dir_ / "gearbox-1.state.json") << state.dump();
   std::string out, err;
   ASSERT_EQ(RunTool({"inspect", (dir_ / "gearbox-1.state.json").string(), "--json"}, dir_,
@@ -377,6 +386,13 @@ TEST_F(DecoupleInspect, InspectShowsWhatAMachineStateFileWouldResume) {
   EXPECT_EQ(j["baseline"]["blocks_learned"], j["baseline"]["blocks_needed"]);
   EXPECT_EQ(j["speed_range_hz"], nlohmann::json::parse("[7.5, 7.6]"));
   EXPECT_EQ(j["load_range"], nlohmann::json::parse("[96.0, 104.0]"));
+  ASSERT_EQ(j["operating_bands"].size(), 2u) << j;
+  EXPECT_TRUE(j["operating_bands"][0]["in_use"].get<bool>());
+  EXPECT_EQ(j["operating_bands"][0]["load_range"], nlohmann::json::parse("[96.0, 104.0]"));
+  EXPECT_EQ(j["operating_bands"][1]["id"], 1);
+  EXPECT_FALSE(j["operating_bands"][1]["in_use"].get<bool>());
+  EXPECT_FALSE(j["operating_bands"][1]["learning"].get<bool>());
+  EXPECT_EQ(j["operating_bands"][1]["load_range"], nlohmann::json::parse("[140.0, 160.0]"));
   EXPECT_EQ(j["blocks"]["received"], 1200);
   EXPECT_EQ(j["blocks"]["not_judged"], nlohmann::json::parse(R"({"load_outside": 5})"));
 

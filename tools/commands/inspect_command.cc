@@ -280,10 +280,25 @@ json InspectMachineState(const daemon::SavedMachine& m) {
   const auto range = [](double lo, double hi) {
     return lo == 0.0 && hi == 0.0 ? json("every") : json::array({lo, hi});
   };
+  const auto load_range = [&range](const LearnedBand& b) {
+    return b.baseline_load_partial ? json("every (not every baseline block carried a load)")
+                                   : range(b.baseline_load_lo, b.baseline_load_hi);
+  };
   j["speed_range_hz"] = range(l.baseline_speed_lo_hz, l.baseline_speed_hi_hz);
-  j["load_range"] = l.baseline_load_partial
-                        ? json("every (not every baseline block carried a load)")
-                        : range(l.baseline_load_lo, l.baseline_load_hi);
+  j["load_range"] = load_range(l);
+  // Every operating band (docs/diagnosis.md section 10), the one in use first.
+  json bands = json::array();
+  const auto band = [&](const LearnedBand& b, bool in_use) {
+    bands.push_back({{"id", b.band_id},
+                     {"in_use", in_use},
+                     {"learning", b.indicator_baseline.count < b.indicator_baseline.blocks},
+                     {"blocks_learned", b.indicator_baseline.count},
+                     {"speed_range_hz", range(b.baseline_speed_lo_hz, b.baseline_speed_hi_hz)},
+                     {"load_range", load_range(b)}});
+  };
+  band(l, true);
+  for (const LearnedBand& b : l.parked_bands) band(b, false);
+  j["operating_bands"] = std::move(bands);
   j["order_tracking"] = l.order_tracking_mode < 0    ? "not decided"
                         : l.order_tracking_mode == 0 ? "constant speed"
                                                      : "tracked";
