@@ -76,6 +76,10 @@ TEST(DaemonConfig, RejectsAnOutOfRangeValueWithItsRange) {
   c["machines"][0]["acquisition"]["sample_rate_hz"] = 0.0;
   EXPECT_EQ(ErrorsOf(c), "machines[0].acquisition.sample_rate_hz: expected a value in (0, "
                          "10000000], got 0");
+  c = DefaultJson();
+  c["machines"][0]["analysis"]["baseline"]["operating_bands"] = 17;
+  EXPECT_EQ(ErrorsOf(c),
+            "machines[0].analysis.baseline.operating_bands: expected a value in [1, 16], got 17");
 }
 
 TEST(DaemonConfig, RejectsAValueOfTheWrongType) {

@@ -60,6 +60,7 @@ TEST_F(MachineSetupBuilder, TranslatesTheConfiguredOptionsAndTrain) {
   a["inverse"]["iterations"] = 7;
   a["dominant_path"]["criterion"] = "indicator";
   a["baseline"]["raw_thresholds"] = json::array({1.0, 2.0, 3.0});
+  a["baseline"]["operating_bands"] = 4;
   auto setup = Build();
   ASSERT_TRUE(setup.ok()) << setup.error();
   const AnalysisOptions& o = setup->options;
@@ -69,6 +70,7 @@ TEST_F(MachineSetupBuilder, TranslatesTheConfiguredOptionsAndTrain) {
   EXPECT_EQ(o.identification.iterations, 7);
   EXPECT_EQ(o.criterion, AnalysisOptions::DominantCriterion::kIndicator);
   EXPECT_EQ(o.raw_thresholds, (std::vector<double>{1.0, 2.0, 3.0}));
+  EXPECT_EQ(o.operating_bands, 4);
   EXPECT_EQ(o.sample_rate_hz, 8000.0);
   EXPECT_EQ(o.nominal_speed_hz, 10.0);
   EXPECT_EQ(setup->machine_id, "table1");
