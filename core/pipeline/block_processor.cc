@@ -522,6 +522,17 @@ void BlockProcessor::ResetBaseline() noexcept { impl_->ResetLearning(); }
 
 namespace {
 
+// The speeds and loads a band learned at, between a band and its saved form (the fields have
+// the same names in both).
+template <typename From, typename To>
+void CopyRanges(const From& from, To& to) noexcept {
+  to.baseline_speed_lo_hz = from.baseline_speed_lo_hz;
+  to.baseline_speed_hi_hz = from.baseline_speed_hi_hz;
+  to.baseline_load_lo = from.baseline_load_lo;
+  to.baseline_load_hi = from.baseline_load_hi;
+  to.baseline_load_partial = from.baseline_load_partial;
+}
+
 LearnedBand ExportBand(const OperatingBand& b) {
   LearnedBand s;
   s.band_id = b.id;
@@ -530,11 +541,7 @@ LearnedBand ExportBand(const OperatingBand& b) {
   s.residual_variance_blocks = b.residual_variance_healthy.blocks;
   s.criterion_healthy = b.criterion_healthy.mean;
   s.criterion_blocks = b.criterion_healthy.blocks;
-  s.baseline_speed_lo_hz = b.baseline_speed_lo_hz;
-  s.baseline_speed_hi_hz = b.baseline_speed_hi_hz;
-  s.baseline_load_lo = b.baseline_load_lo;
-  s.baseline_load_hi = b.baseline_load_hi;
-  s.baseline_load_partial = b.baseline_load_partial;
+  CopyRanges(b, s);
   return s;
 }
 
@@ -586,11 +593,7 @@ Result<OperatingBand> ImportBand(const LearnedBand& s, const OperatingBand& now)
   b.residual_variance_healthy.blocks = s.residual_variance_blocks;
   b.criterion_healthy.mean = s.criterion_healthy;
   b.criterion_healthy.blocks = s.criterion_blocks;
-  b.baseline_speed_lo_hz = s.baseline_speed_lo_hz;
-  b.baseline_speed_hi_hz = s.baseline_speed_hi_hz;
-  b.baseline_load_lo = s.baseline_load_lo;
-  b.baseline_load_hi = s.baseline_load_hi;
-  b.baseline_load_partial = s.baseline_load_partial;
+  CopyRanges(s, b);
   return b;
 }
 

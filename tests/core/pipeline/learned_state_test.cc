@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "core/pipeline/learned_state_json.h"
+#include "tests/core/pipeline/learned_state_round_trip.h"
 #include "tests/core/pipeline/simulated_machine.h"
 
 namespace gearpath {
@@ -45,14 +46,6 @@ void ExpectSameJudgement(BlockProcessor& a, BlockProcessor& b, GearboxSimulator&
       EXPECT_EQ(ra.shafts[s].raw_threshold, rb.shafts[s].raw_threshold);
     }
   }
-}
-
-LearnedState ThroughJson(const LearnedState& s) {
-  // Text, not the json object: what the daemon writes and reads back.
-  const std::string text = ToJson(s).dump();
-  auto back = LearnedStateFromJson(nlohmann::json::parse(text));
-  EXPECT_TRUE(back.ok()) << back.error();
-  return back.ok() ? std::move(back.value()) : LearnedState{};
 }
 
 // A fracture on G1 (a shaft of one mesh) and on G2 (the shaft of two meshes, where the mesh

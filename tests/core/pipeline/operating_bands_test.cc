@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "core/pipeline/learned_state_json.h"
+#include "tests/core/pipeline/learned_state_round_trip.h"
 #include "tests/core/pipeline/simulated_machine.h"
 
 namespace gearpath {
@@ -80,12 +81,6 @@ BlockProcessor LearnedAtLoad(int bands, std::uint64_t& seq) {
   EXPECT_TRUE(r.score.judged);
   EXPECT_EQ(r.verdict.state, FaultState::kNoFault) << r.verdict.reason.view();
   return p;
-}
-
-LearnedState ThroughJson(const LearnedState& s) {
-  auto back = LearnedStateFromJson(nlohmann::json::parse(ToJson(s).dump()));
-  EXPECT_TRUE(back.ok()) << back.error();
-  return back.ok() ? std::move(back.value()) : LearnedState{};
 }
 
 TEST(OperatingBandsTest, OneBandDoesNotJudgeAnotherLoad) {

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/pipeline/learned_state_json.h"
+#include "tests/core/pipeline/learned_state_round_trip.h"
 #include "tests/core/pipeline/simulated_machine.h"
 
 namespace gearpath {
@@ -28,12 +29,6 @@ BlockProcessor LearnedAtLoads(std::uint64_t& seq, double other_load = 105.0) {
   }
   EXPECT_EQ(p->baseline_blocks_learned(), kBaselineBlocks);
   return std::move(p.value());
-}
-
-LearnedState ThroughJson(const LearnedState& s) {
-  auto back = LearnedStateFromJson(nlohmann::json::parse(ToJson(s).dump()));
-  EXPECT_TRUE(back.ok()) << back.error();
-  return back.ok() ? std::move(back.value()) : LearnedState{};
 }
 
 TEST(OperatingLoadTest, ABlockIsJudgedOnlyWithinTheLearnedLoadsWidenedByTheTolerance) {
