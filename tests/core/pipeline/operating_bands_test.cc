@@ -162,6 +162,29 @@ TEST(OperatingBandsTest, ALearningBandRestartsWhereTheMachineNowRuns) {
   EXPECT_EQ(back.score.operating_band, 0);
 }
 
+// A band is one of speed as well as load: a machine stepped to 10 % more speed (far outside
+// speed_tolerance) learns a band there and judges there, as after a load step.
+TEST(OperatingBandsTest, AnAddedBandLearnsAtANewSpeed) {
+  std::uint64_t seq = 0;
+  BlockProcessor p = Processor(2);
+  GearboxSimulator slow = MakeSimulator(Table1Machine(), FaultType::kNone, "", 7);
+  RunBlocks(p, slow, kBaselineBlocks + 1, seq);
+  GearboxSimulator fast = MakeSimulator(Table1Machine(), FaultType::kNone, "", 13, true, kBlock,
+                                        /*input_speed_hz=*/11.0);
+  for (int b = 0; b < kBaselineBlocks; ++b) {
+    const BlockResult r = RunBlocks(p, fast, 1, seq);
+    EXPECT_EQ(r.score.not_judged, NotJudgedCause::kLearningBand) << b;
+  }
+  const BlockResult r = RunBlocks(p, fast, 2, seq);
+  EXPECT_TRUE(r.score.judged) << r.verdict.reason.view();
+  EXPECT_EQ(r.score.operating_band, 1);
+  EXPECT_NEAR(r.score.baseline_speed_lo_hz, fast.speed_hz(), 1e-9);
+  EXPECT_EQ(r.verdict.state, FaultState::kNoFault) << r.verdict.reason.view();
+  const BlockResult back = RunBlocks(p, slow, 1, seq);
+  EXPECT_TRUE(back.score.judged);
+  EXPECT_EQ(back.score.operating_band, 0);
+}
+
 TEST(OperatingBandsTest, EveryBandTravelsWithTheState) {
   std::uint64_t seq = 0;
   BlockProcessor p = LearnedAtLoad(2, seq);
