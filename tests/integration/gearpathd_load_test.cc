@@ -119,5 +119,54 @@ TEST_F(GearpathdLoad, AFractureAtALearnedLoadIsStillFoundAndANaNLoadIsRejectedBy
       << last_status_.last_rejection_reason;
 }
 
+// With baseline.operating_bands 2 the daemon learns a second band at a load its first did not
+// learn at, holding the verdict meanwhile, then judges there; both bands survive a restart.
+class GearpathdOperatingBands : public GearpathdLoad {
+ protected:
+  void Configure(json& config) override {
+    GearpathdLoad::Configure(config);
+    config["machines"][0]["analysis"]["baseline"]["operating_bands"] = 2;
+  }
+};
+
+TEST_F(GearpathdOperatingBands, ASecondBandLearnsAtANewLoadJudgesThereAndSurvivesARestart) {
+  LearnAt(kLearnedLoad);
+  GearboxSimulator healthy = Table1Simulator(FaultType::kNone, "", 99);
+  auto first = Judge(healthy, kLearnedLoad);
+  ASSERT_TRUE(first.has_value()) << daemon_->Log();
+  EXPECT_EQ((*first)->state, gearpath_NO_FAULT) << (*first)->reason;
+  for (int i = 0; i < kBaselineBlocks; ++i) {
+    auto v = Judge(healthy, 150.0);
+    ASSERT_TRUE(v.has_value()) << "no verdict on block " << i << " at 150\n" << daemon_->Log();
+    EXPECT_EQ((*v)->state, gearpath_NO_FAULT) << (*v)->reason;  // held, not LEARNING
+    EXPECT_EQ((*v)->confidence, 0.0);
+    EXPECT_TRUE(std::string_view((*v)->reason)
+                    .starts_with("learning the healthy baseline of operating band 1 (of up to 2)"))
+        << (*v)->reason;
+  }
+  for (const double load : {150.0, kLearnedLoad}) {
+    auto v = Judge(healthy, load);
+    ASSERT_TRUE(v.has_value()) << daemon_->Log();
+    EXPECT_TRUE(std::string_view((*v)->reason).starts_with(kJudged)) << load << ": " << (*v)->reason;
+  }
+
+  RestartDaemon(SIGTERM);
+  bool saved = false;
+  for (const auto& entry : std::filesystem::directory_iterator(dir_ / "state")) {
+    if (!entry.path().string().ends_with(".state.json")) continue;
+    std::ifstream in(entry.path());
+    const json state = json::parse(in);
+    EXPECT_EQ(state["learned"]["operating_bands"].size(), 1u) << state["learned"].dump();
+    EXPECT_EQ(state["counters"]["not_judged"], json::parse(R"({"learning_band": 6})")) << state;
+    saved = true;
+  }
+  EXPECT_TRUE(saved) << "no state file in " << (dir_ / "state");
+  for (const double load : {150.0, kLearnedLoad}) {
+    auto v = Judge(healthy, load);
+    ASSERT_TRUE(v.has_value()) << daemon_->Log();
+    EXPECT_TRUE(std::string_view((*v)->reason).starts_with(kJudged)) << load << ": " << (*v)->reason;
+  }
+}
+
 }  // namespace
 }  // namespace gearpath::testing
