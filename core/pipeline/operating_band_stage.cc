@@ -40,46 +40,50 @@ RejectReason OperatingBandStage::Process(StageContext& ctx) noexcept {
   const auto holds = [&](const OperatingBand& b) {
     return BandHolds(b, speed, load, o.speed_tolerance, o.load_tolerance);
   };
-  if (holds(st.band)) return RejectReason::kNone;
   const auto make_current = [&st](OperatingBand& b) {
     std::swap(st.band, b);
     st.learning = !st.band.learned();
     st.previous_scored = false;  // the two-block score does not span bands
   };
-  std::size_t learning_slot = st.parked_count;
+  // 1. A learned band that holds the block judges it.
+  if (st.band.learned() && holds(st.band)) return RejectReason::kNone;
+  OperatingBand* learning = st.band.learned() ? nullptr : &st.band;
   for (std::size_t i = 0; i < st.parked_count; ++i) {
     OperatingBand& b = st.parked_bands[i];
     if (!b.learned()) {
-      learning_slot = i;
-      continue;
-    }
-    if (holds(b)) {
+      learning = &b;
+    } else if (holds(b)) {
       make_current(b);
       return RejectReason::kNone;
     }
   }
-  // No learned band holds the block: the parked learning band goes on when it holds it.
-  if (learning_slot < st.parked_count && holds(st.parked_bands[learning_slot])) {
-    make_current(st.parked_bands[learning_slot]);
-    return RejectReason::kNone;
-  }
-  // A new band (or a restart of the learning one) never learns while a fault is suspected.
+  // 2. No learned band holds it. A band learns only while no fault is suspected: the learning
+  // band goes on where it holds the block, else it restarts here, else a new band starts.
   const FaultState state = st.alarm->status().state;
-  if (state == FaultState::kSuspected || state == FaultState::kAlarm) return RejectReason::kNone;
-  if (!st.band.learned()) {  // the learning band is in force: it restarts here
-    st.band.Reset();
+  const bool may_learn = state != FaultState::kSuspected && state != FaultState::kAlarm;
+  if (may_learn && learning != nullptr) {
+    const bool goes_on = holds(*learning);
+    if (learning != &st.band) make_current(*learning);
+    if (!goes_on) st.band.Reset();
     return RejectReason::kNone;
   }
-  if (learning_slot < st.parked_count) {  // the learning band is parked: in force, restarted
-    make_current(st.parked_bands[learning_slot]);
-    st.band.Reset();
+  if (may_learn && st.parked_count < st.parked_bands.size()) {
+    OperatingBand& fresh = st.parked_bands[st.parked_count++];
+    fresh.Reset();
+    fresh.id = static_cast<int>(st.parked_count);
+    make_current(fresh);
     return RejectReason::kNone;
   }
-  if (st.parked_count == st.parked_bands.size()) return RejectReason::kNone;  // all taken
-  OperatingBand& fresh = st.parked_bands[st.parked_count++];
-  fresh.Reset();
-  fresh.id = static_cast<int>(st.parked_count);
-  make_current(fresh);
+  // 3. Nothing may learn here: a learned band stays in force, which does not hold the block,
+  // so it is not judged (and a learning band learns nothing from it).
+  if (!st.band.learned()) {
+    for (std::size_t i = 0; i < st.parked_count; ++i) {
+      if (st.parked_bands[i].learned()) {
+        make_current(st.parked_bands[i]);
+        break;
+      }
+    }
+  }
   return RejectReason::kNone;
 }
 

@@ -6,8 +6,9 @@
 // judged. With more, the block is judged against the learned band that holds its speed and
 // load; when none does and no fault is suspected (the machine is no_fault, or has just learned
 // and not been judged yet), a new band starts learning there from the blocks that stay at that
-// operating point, while the state holds. That is the guard: a band learned while a fault is
-// present would take the fault for healthy there. At most one band learns at a time; a block outside every band
+// operating point, while the state holds; while a fault is suspected no band learns, not even
+// one that had begun. That is the guard: a band learned while a fault is present would take
+// the fault for healthy there. At most one band learns at a time; a block outside every band
 // and outside the learning one restarts that one where the machine now runs (a band learns
 // from one operating point, not from a ramp through many). When every band is taken, a block
 // outside them all is not judged, as with one band.

@@ -145,6 +145,26 @@ TEST(OperatingBandsTest, NoBandIsLearnedWhileTheMachineIsInAlarm) {
   }
 }
 
+// A band that had begun to learn before the fault learns nothing more while the fault is
+// suspected, even at its own operating point.
+TEST(OperatingBandsTest, ALearningBandStopsLearningWhileTheMachineIsInAlarm) {
+  std::uint64_t seq = 0;
+  BlockProcessor p = LearnedAtLoad(2, seq);
+  Gearbox healthy(FaultType::kNone, "", 13);
+  EXPECT_EQ(RunAtLoad(p, healthy, 2, seq, kHighLoad).score.baseline_blocks_learned, 2);
+  Gearbox broken(FaultType::kToothFracture, "G1", 21);
+  ASSERT_EQ(RunAtLoad(p, broken, 4, seq, kLoad).verdict.state, FaultState::kAlarm);
+  for (int b = 0; b < kBaselineBlocks; ++b) {
+    const BlockResult r = RunAtLoad(p, broken, 1, seq, kHighLoad);
+    EXPECT_EQ(r.score.not_judged, NotJudgedCause::kLoadOutside) << b;
+    EXPECT_EQ(r.score.operating_band, 0) << b;
+    EXPECT_EQ(r.verdict.state, FaultState::kAlarm);  // held
+  }
+  const LearnedState saved = p.ExportLearnedState();
+  ASSERT_EQ(saved.parked_bands.size(), 1u);
+  EXPECT_EQ(saved.parked_bands[0].indicator_baseline.count, 2);
+}
+
 TEST(OperatingBandsTest, ALearningBandRestartsWhereTheMachineNowRuns) {
   std::uint64_t seq = 0;
   BlockProcessor p = LearnedAtLoad(3, seq);
