@@ -49,6 +49,16 @@ class GearpathdLoad : public GearpathdOverDds {
     }
   }
 
+  // The machine's state file, as the daemon saved it (null when there is none).
+  json SavedState() const {
+    for (const auto& entry : std::filesystem::directory_iterator(dir_ / "state")) {
+      if (!entry.path().string().ends_with(".state.json")) continue;
+      std::ifstream in(entry.path());
+      return json::parse(in);
+    }
+    return nullptr;
+  }
+
   std::uint64_t sequence_ = 1;
 };
 
@@ -79,15 +89,9 @@ TEST_F(GearpathdLoad, ABlockIsJudgedOnlyWithinTheLearnedLoadsAndTheRangeSurvives
   // The learned range is part of the saved state, and so is the count of blocks not judged
   // for their load, which a plant watches (gearpath_blocks_not_judged_total).
   RestartDaemon(SIGTERM);
-  bool counted = false;
-  for (const auto& entry : std::filesystem::directory_iterator(dir_ / "state")) {
-    if (!entry.path().string().ends_with(".state.json")) continue;
-    std::ifstream in(entry.path());
-    const json saved = json::parse(in);
-    EXPECT_EQ(saved["counters"]["not_judged"], json::parse(R"({"load_outside": 1})")) << saved;
-    counted = true;
-  }
-  EXPECT_TRUE(counted) << "no state file in " << (dir_ / "state");
+  const json saved = SavedState();
+  ASSERT_FALSE(saved.is_null()) << "no state file in " << (dir_ / "state");
+  EXPECT_EQ(saved["counters"]["not_judged"], json::parse(R"({"load_outside": 1})")) << saved;
   auto after = Judge(healthy, 150.0);
   ASSERT_TRUE(after.has_value()) << daemon_->Log();
   EXPECT_EQ(std::string_view((*after)->reason), kOutside) << daemon_->Log();
@@ -151,16 +155,10 @@ TEST_F(GearpathdOperatingBands, ASecondBandLearnsAtANewLoadJudgesThereAndSurvive
   }
 
   RestartDaemon(SIGTERM);
-  bool saved = false;
-  for (const auto& entry : std::filesystem::directory_iterator(dir_ / "state")) {
-    if (!entry.path().string().ends_with(".state.json")) continue;
-    std::ifstream in(entry.path());
-    const json state = json::parse(in);
-    EXPECT_EQ(state["learned"]["operating_bands"].size(), 1u) << state["learned"].dump();
-    EXPECT_EQ(state["counters"]["not_judged"], json::parse(R"({"learning_band": 6})")) << state;
-    saved = true;
-  }
-  EXPECT_TRUE(saved) << "no state file in " << (dir_ / "state");
+  const json state = SavedState();
+  ASSERT_FALSE(state.is_null()) << "no state file in " << (dir_ / "state");
+  EXPECT_EQ(state["learned"]["operating_bands"].size(), 1u) << state["learned"].dump();
+  EXPECT_EQ(state["counters"]["not_judged"], json::parse(R"({"learning_band": 6})")) << state;
   for (const double load : {150.0, kLearnedLoad}) {
     auto v = Judge(healthy, load);
     ASSERT_TRUE(v.has_value()) << daemon_->Log();
