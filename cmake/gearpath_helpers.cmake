@@ -32,6 +32,15 @@ endfunction()
 # `test_<NAME>` from the *_test.cc in this folder, registered with ctest test by test. TIMEOUT is
 # the per-test watchdog, so a hang fails fast instead of stalling CI. EXCLUDE (gtest filter
 # syntax, ':'-separated) keeps tests out of the registration that another ctest entry runs.
+# gearpath_test_pch(<target>): the headers every test parses (GoogleTest, Eigen, nlohmann-json,
+# fmt: about 5 s of a 2-core CI machine per translation unit at -O2) precompiled once per test
+# executable instead of in each of its ~150 sources. Tests only: the daemon's and the tools' own
+# sources include what they use and nothing is forced on them.
+function(gearpath_test_pch target)
+  target_precompile_headers(${target} PRIVATE <gtest/gtest.h> <Eigen/Dense> <nlohmann/json.hpp>
+                            <fmt/format.h> <string> <vector>)
+endfunction()
+
 function(gearpath_module_tests name)
   cmake_parse_arguments(ARG "" "TIMEOUT;EXCLUDE" "DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc)
@@ -47,6 +56,7 @@ function(gearpath_module_tests name)
                                              gearpath_warnings)
   target_compile_definitions(test_${name} PRIVATE
     GEARPATH_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")
+  gearpath_test_pch(test_${name})
   set(filter "")
   if(ARG_EXCLUDE)
     set(filter TEST_FILTER "-${ARG_EXCLUDE}")
