@@ -455,8 +455,8 @@ RejectReason ConditionIndicatorStage::Process(StageContext& ctx) noexcept {
       } else if (!cw.tsa->Process(signal.value(), cw.plans[g], cw.record).ok()) {
         continue;
       }
-      const double na4_reference =
-          st.band.residual_variance_healthy.blocks > 0 ? st.band.residual_variance_healthy.mean[slot] : 0.0;
+      const HealthyMean& na4 = st.band.residual_variance_healthy;
+      const double na4_reference = na4.blocks > 0 ? na4.mean[slot] : 0.0;
       if (!cw.indicators
                ->Compute(cw.record.tsa(), cw.record.orders(), rg.mesh_orders, na4_reference,
                          cw.values, spread)

@@ -52,7 +52,8 @@ RejectReason DominantPathStage::Process(StageContext& ctx) noexcept {
     }
     if (any) {
       for (std::size_t p = 0; p < m.paths; ++p) {
-        w.path_criterion[p] = std::max(0.0, w.path_criterion[p] - st.band.criterion_healthy.mean[p]);
+        w.path_criterion[p] =
+            std::max(0.0, w.path_criterion[p] - st.band.criterion_healthy.mean[p]);
       }
     }
   }

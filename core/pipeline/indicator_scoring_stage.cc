@@ -19,13 +19,10 @@ namespace {
 NotJudgedCause OutsideBand(const StageContext& ctx) noexcept {
   const OperatingBand& b = ctx.state.band;
   const AnalysisOptions& o = ctx.machine.setup.options;
-  const double speed = ctx.work.speed_hz;
-  if (!BandHolds(b, speed, 0.0, o.speed_tolerance, o.load_tolerance)) {
+  if (!BandHoldsSpeed(b, ctx.work.speed_hz, o.speed_tolerance)) {
     return NotJudgedCause::kSpeedOutside;
   }
-  if (!BandHolds(b, speed, ctx.block.load, o.speed_tolerance, o.load_tolerance)) {
-    return NotJudgedCause::kLoadOutside;
-  }
+  if (!BandHoldsLoad(b, ctx.block.load, o.load_tolerance)) return NotJudgedCause::kLoadOutside;
   return NotJudgedCause::kNone;
 }
 
@@ -62,8 +59,9 @@ void IndicatorScoringStage::Learn(StageContext& ctx) noexcept {
   if (!(w.speed_hz > 0.0)) return;
   const bool complete =
       std::all_of(w.slot_valid.begin(), w.slot_valid.end(), [](std::uint8_t v) { return v != 0; });
-  if (st.envelope_baseline && !st.envelope_baseline->learned())
+  if (st.envelope_baseline && !st.envelope_baseline->learned()) {
     st.envelope_baseline->Add(envelope_);
+  }
   if (!complete) return;
   if (st.band.indicator_baseline->Add(w.indicators)) {
     st.band.residual_variance_healthy.Add(w.slot_residual_variance);
@@ -84,10 +82,11 @@ void IndicatorScoringStage::Score(StageContext& ctx) noexcept {
   std::fill(w.group_score.begin(), w.group_score.end(), 0.0);
   BlockScore& score = ctx.out.score;
   // A band that learns beside learned ones is an added operating point: the verdict holds.
-  score.not_judged =
-      st.learning ? (st.parked_band_learned() ? NotJudgedCause::kLearningBand : NotJudgedCause::kNone)
-      : !(w.speed_hz > 0.0) ? NotJudgedCause::kSpeedUnknown
-                            : OutsideBand(ctx);
+  const NotJudgedCause learning_cause =
+      st.parked_band_learned() ? NotJudgedCause::kLearningBand : NotJudgedCause::kNone;
+  score.not_judged = st.learning            ? learning_cause
+                     : !(w.speed_hz > 0.0)  ? NotJudgedCause::kSpeedUnknown
+                                            : OutsideBand(ctx);
   if (st.learning || score.not_judged != NotJudgedCause::kNone) {
     std::fill(w.z.begin(), w.z.end(), 0.0);
     std::fill(w.excess.begin(), w.excess.end(), 0.0);

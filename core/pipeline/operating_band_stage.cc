@@ -16,12 +16,13 @@ bool WithinRange(double value, double lo, double hi, double tolerance) noexcept 
 
 }  // namespace
 
-bool BandHolds(const OperatingBand& band, double speed_hz, double load, double speed_tolerance,
-               double load_tolerance) noexcept {
-  return WithinRange(speed_hz, band.baseline_speed_lo_hz, band.baseline_speed_hi_hz,
-                     speed_tolerance) &&
-         (!(load > 0.0) ||
-          WithinRange(load, band.baseline_load_lo, band.baseline_load_hi, load_tolerance));
+bool BandHoldsSpeed(const OperatingBand& band, double speed_hz, double tolerance) noexcept {
+  return WithinRange(speed_hz, band.baseline_speed_lo_hz, band.baseline_speed_hi_hz, tolerance);
+}
+
+bool BandHoldsLoad(const OperatingBand& band, double load, double tolerance) noexcept {
+  if (!(load > 0.0)) return true;  // a block without a load is judged at any load
+  return WithinRange(load, band.baseline_load_lo, band.baseline_load_hi, tolerance);
 }
 
 Status OperatingBandStage::Configure(const MachineContext&, BlockWorkspace&) {
@@ -35,10 +36,11 @@ RejectReason OperatingBandStage::Process(StageContext& ctx) noexcept {
   const double load = ctx.block.load;
   // One band, no speed (nothing is judged), or the machine's first baseline still learning
   // (it learns from every block, as with one band): nothing to choose.
-  if (st.parked_bands.empty() || !(speed > 0.0) || !st.any_band_learned())
+  if (st.parked_bands.empty() || !(speed > 0.0) || !st.any_band_learned()) {
     return RejectReason::kNone;
+  }
   const auto holds = [&](const OperatingBand& b) {
-    return BandHolds(b, speed, load, o.speed_tolerance, o.load_tolerance);
+    return BandHoldsSpeed(b, speed, o.speed_tolerance) && BandHoldsLoad(b, load, o.load_tolerance);
   };
   const auto make_current = [&st](OperatingBand& b) {
     std::swap(st.band, b);

@@ -31,9 +31,9 @@ class OperatingBandStage final : public PipelineStage {
   RejectReason Process(StageContext& ctx) noexcept override;
 };
 
-// `band` holds a block at this speed and load: within its learned ranges widened by the
-// tolerances (a range it has not learned, or a block without a load, holds any value).
-bool BandHolds(const OperatingBand& band, double speed_hz, double load, double speed_tolerance,
-               double load_tolerance) noexcept;
+// `band` holds a block at this speed, at this load: within its learned range widened by the
+// tolerance (a range it has not learned, or a block without a load, holds any value).
+bool BandHoldsSpeed(const OperatingBand& band, double speed_hz, double tolerance) noexcept;
+bool BandHoldsLoad(const OperatingBand& band, double load, double tolerance) noexcept;
 
 }  // namespace gearpath

@@ -151,7 +151,8 @@ TEST_F(GearpathdOperatingBands, ASecondBandLearnsAtANewLoadJudgesThereAndSurvive
   for (const double load : {150.0, kLearnedLoad}) {
     auto v = Judge(healthy, load);
     ASSERT_TRUE(v.has_value()) << daemon_->Log();
-    EXPECT_TRUE(std::string_view((*v)->reason).starts_with(kJudged)) << load << ": " << (*v)->reason;
+    EXPECT_TRUE(std::string_view((*v)->reason).starts_with(kJudged))
+        << load << ": " << (*v)->reason;
   }
 
   RestartDaemon(SIGTERM);
@@ -162,7 +163,8 @@ TEST_F(GearpathdOperatingBands, ASecondBandLearnsAtANewLoadJudgesThereAndSurvive
   for (const double load : {150.0, kLearnedLoad}) {
     auto v = Judge(healthy, load);
     ASSERT_TRUE(v.has_value()) << daemon_->Log();
-    EXPECT_TRUE(std::string_view((*v)->reason).starts_with(kJudged)) << load << ": " << (*v)->reason;
+    EXPECT_TRUE(std::string_view((*v)->reason).starts_with(kJudged))
+        << load << ": " << (*v)->reason;
   }
 }
 
